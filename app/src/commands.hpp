@@ -1,0 +1,31 @@
+#pragma once
+// The flag-sim subcommands. Each returns the process exit code (contract:
+// "Exit codes"); user mistakes are thrown as UserError and reported by main.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flagsim/core/scene.hpp"
+
+namespace flagsim::app {
+
+struct RunOptions {
+  std::string scene_path;            ///< empty: the embedded default scene
+  std::string output_path;           ///< -o; empty: output.file, else out/<name>.h5
+  std::optional<std::string> mode;   ///< --mode
+  std::optional<long long> frames;   ///< --frames
+  std::optional<long long> seed;     ///< --seed
+  std::vector<std::string> sets;     ///< --set KEY=VALUE
+  std::string render;                ///< --render
+  bool quiet = false;
+};
+
+/// Reads the scene a command names (or the default one), with the overrides.
+Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides);
+
+int run_command(const RunOptions& options);
+int validate_command(const std::string& scene_path);
+int info_command(const std::string& path);
+int scene_command(bool print_default);
+
+}  // namespace flagsim::app

@@ -1,0 +1,126 @@
+// `flag-sim run`: scene -> solver -> frames on disk, with divergence checks,
+// interruption and the progress line.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "flagsim/coarse_physics/spring_damper.hpp"
+#include "flagsim/core/divergence.hpp"
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/core/strain.hpp"
+#include "flagsim/core/version.hpp"
+#include "flagsim/data/frame_writer.hpp"
+#include "interrupt.hpp"
+#include "progress.hpp"
+
+namespace flagsim::app {
+namespace {
+
+std::vector<std::string> overrides_of(const RunOptions& options) {
+  std::vector<std::string> overrides = options.sets;
+  if (options.mode) overrides.push_back(fmt::format("scene.mode=\"{}\"", *options.mode));
+  if (options.seed) overrides.push_back(fmt::format("scene.seed={}", *options.seed));
+  if (options.frames) overrides.push_back(fmt::format("scene.frames={}", *options.frames));
+  return overrides;
+}
+
+std::string output_path_of(const RunOptions& options, const Scene& scene) {
+  if (!options.output_path.empty()) return options.output_path;
+  if (!scene.output.file.empty()) return scene.output.file;
+  return fmt::format("out/{}.h5", scene.name);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int run_command(const RunOptions& options) {
+  if (options.frames && *options.frames < 1)
+    throw UserError(fmt::format("--frames {}: expected at least 1 frame", *options.frames));
+  const Scene scene = load_scene(options.scene_path, overrides_of(options));
+  if (!options.render.empty())
+    throw UserError("--render: rendering is not available in this version of flag-sim");
+
+  physics::SpringDamperSolver solver(scene);
+  StageTimes times;
+  solver.register_stages(times);
+  const int checks_stage = times.add("checks");
+  const int output_stage = times.add("output");
+
+  data::RunInfo info;
+  info.mode = to_string(scene.mode);
+  info.effects = solver.effects();
+  info.scene_toml = scene.toml_text;
+  info.version = std::string(version());
+  info.seed = scene.seed;
+  info.stages = times.names();
+  info.output_stage = output_stage;
+  info.numbers = {{"substep_seconds", solver.substep_s()},
+                  {"substeps_per_frame", double(solver.substeps_per_frame())},
+                  {"stable_substep_seconds", solver.stable_substep_s()},
+                  {"fps", scene.fps}};
+  const Lattice lattice = solver.model().lattice;
+  data::FrameWriter writer(output_path_of(options, scene), lattice, info, scene.output.flush_every);
+
+  InterruptGuard interrupt;
+  Progress progress(!options.quiet && isatty(STDERR_FILENO), scene.simulated_frames());
+  physics::ClothState state = solver.initial_state(scene.seed);
+  const int frames = scene.simulated_frames();
+  double max_strain_seen = 0.0, total_wall_s = 0.0;
+  auto since_write = std::chrono::steady_clock::now();
+  std::string status = "complete", reason;
+  for (int frame = 0; frame < frames; ++frame) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    if (frame > 0) solver.advance_frame(state, &times);
+    StrainStats strain;
+    {
+      ScopedStageTimer timer(times, checks_stage);
+      strain = link_strain(lattice, state.x_m);
+      if (auto why = divergence_reason(state.x_m, state.v_m_s, strain, scene.limits)) {
+        status = "diverged";
+        reason = fmt::format("at t = {:.4g} s (frame {}): {}", state.time_s, frame, *why);
+      }
+    }
+    if (status == "diverged") break;
+    max_strain_seen = std::max(max_strain_seen, strain.max);
+    if (frame % scene.output.every == 0) {
+      data::FrameStats stats{strain.max, strain.mean, times.seconds(), seconds_since(since_write),
+                             solver.kinetic_energy(state)};
+      // Frame times are n / fps exactly, not the sum of the substeps.
+      writer.write_frame(frame / scene.fps, state.x_m, stats);
+      times.reset();
+      since_write = std::chrono::steady_clock::now();
+    }
+    total_wall_s += seconds_since(frame_start);
+    progress.update(frame, state.time_s, 1000.0 * total_wall_s / (frame + 1));
+    if (InterruptGuard::requested() && frame + 1 < frames) {
+      status = "interrupted";
+      reason = fmt::format("signal received after frame {} (t = {:.4g} s)", frame, state.time_s);
+      break;
+    }
+  }
+  progress.done();
+  writer.finish(status, reason);
+
+  const double ms_per_frame = 1000.0 * total_wall_s / std::max(1, writer.frames_written());
+  if (status == "diverged") {
+    fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n", reason,
+               writer.frames_written(), writer.path());
+    return int(ExitCode::kDiverged);
+  }
+  fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {} substeps/frame of {:.3g} s, "
+             "max strain {:.3f}% -> {}\n",
+             status, writer.frames_written(), lattice.rows, lattice.cols, to_string(scene.mode),
+             ms_per_frame, solver.substeps_per_frame(), solver.substep_s(), 100.0 * max_strain_seen,
+             writer.path());
+  return status == "interrupted" ? int(ExitCode::kInterrupted) : int(ExitCode::kSuccess);
+}
+
+}  // namespace flagsim::app

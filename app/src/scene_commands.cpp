@@ -1,0 +1,35 @@
+// `flag-sim validate` and `flag-sim scene`, and the shared scene loading.
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "flagsim/coarse_physics/spring_damper.hpp"
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/scene_parser.hpp"
+
+namespace flagsim::app {
+
+Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides) {
+  if (scene_path.empty())
+    return parse_scene(default_scene_toml(), kDefaultSceneName, overrides);
+  return load_scene_file(scene_path, overrides);
+}
+
+int validate_command(const std::string& scene_path) {
+  const Scene scene = load_scene(scene_path, {});
+  const physics::SpringDamperSolver solver(scene);
+  fmt::print("ok: {}: scene \"{}\", mode {}, {} x {} nodes, {} frames at {} fps, effects {}; "
+             "substep {:.3g} s ({} per frame, stability limit {:.3g} s)\n",
+             scene_path, scene.name, to_string(scene.mode), scene.flag.fine_rows,
+             scene.flag.fine_cols, scene.simulated_frames(), scene.fps,
+             fmt::join(solver.effects(), ","), solver.substep_s(), solver.substeps_per_frame(),
+             solver.stable_substep_s());
+  return int(ExitCode::kSuccess);
+}
+
+int scene_command(bool print_default) {
+  if (!print_default) throw UserError("scene: say which scene to print, e.g. flag-sim scene --default");
+  fmt::print("{}", default_scene_toml());
+  return int(ExitCode::kSuccess);
+}
+
+}  // namespace flagsim::app

@@ -1,0 +1,46 @@
+#pragma once
+// Wind force on the cloth, per triangle, from the relative velocity of the air.
+//
+// Each lattice cell (j,k)-(j,k+1)-(j+1,k)-(j+1,k+1) is split into the triangles
+// (00, 01, 10) and (01, 11, 10). For a triangle of area A and unit normal n,
+// with u = wind - (mean velocity of its three nodes):
+//
+//   drag  F_D = 1/2 rho C_d A (u.n) |u.n| n                 (pressure of the normal flow)
+//   lift  F_L = 1/2 rho C_l A (u.n) (|u| n - (u.n) u/|u|)
+//
+// F_L is perpendicular to u, in the plane of u and n, with magnitude
+// 1/2 rho C_l A |u|^2 cos(phi) sin(phi) (phi the angle of u to n): zero for flow
+// along the normal or along the plate, largest at 45 degrees. Both terms are
+// unchanged when n flips, so both faces of the cloth catch the wind. A flat
+// plate facing the flow gets 1/2 rho C_d A |u|^2, the textbook value. Each node
+// of the triangle receives a third of the force.
+#include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/core/scene.hpp"
+
+namespace flagsim::physics {
+
+/// Force on one triangle (x0, x1, x2) in air moving at `relative_velocity` (m/s)
+/// relative to the triangle, N. A degenerate triangle gets none.
+Vec3 triangle_aero_force(const Vec3& x0, const Vec3& x1, const Vec3& x2,
+                         const Vec3& relative_velocity, const Wind& wind);
+
+class AeroForce final : public ForceTerm {
+ public:
+  /// @param cloth_speed_bound_m_s  an estimate of the largest node speed (pole
+  ///        motion, flapping), used only for the stability bound
+  AeroForce(const ClothModel& model, const Wind& wind, double areal_density_kg_m2,
+            double cloth_speed_bound_m_s);
+  std::string_view name() const override { return "wind"; }
+  void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
+                  std::span<Vec3> forces_n) const override;
+  double velocity_rate_bound() const override;
+
+ private:
+  const Lattice& lattice_;
+  Wind wind_;
+  double areal_density_kg_m2_;
+  double cloth_speed_bound_m_s_;
+};
+
+}  // namespace flagsim::physics

@@ -1,0 +1,50 @@
+#pragma once
+// The discrete cloth: node masses and spring constants derived from the
+// continuum parameters of the scene, so that the same scene is the same cloth
+// at any lattice resolution.
+//
+// With rest spacings dx (along rows) and dy (along columns):
+//  - mass of a node = areal density * the area it stands for: dx*dy inside,
+//    half on an edge, a quarter at a corner (total = density * w * h);
+//  - a row link stands for a strip of cloth dy wide: k = Y * dy / dx (Y the
+//    2D stretch modulus, N/m), half that on the top and bottom edges, so the
+//    strip stretches by Y * strain per unit width whatever dx and dy are;
+//    column links likewise with k = Y * dx / dy;
+//  - the two diagonals of each cell give the in-plane shear modulus G (N/m):
+//    a shear gamma stretches each by gamma*dx*dy/d, and 2 * 1/2 k_d (gamma dx dy/d)^2
+//    over the cell area dx*dy equals 1/2 G gamma^2 for k_d = G d^2 / (2 dx dy);
+//  - bending (optional, rigidity D in N m) acts on every three consecutive nodes
+//    of a row or column, see bending_springs.hpp.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/scene.hpp"
+
+namespace flagsim::physics {
+
+/// All links (a, b) with b = a + offset, for one neighbour direction.
+struct LinkFamily {
+  int row_step = 0;          ///< dj of b relative to a
+  int col_step = 0;          ///< dk of b relative to a
+  double rest_length_m = 0;  ///< S of every link of the family
+  double stiffness_n_m = 0;  ///< k of an interior link
+  double edge_factor = 1.0;  ///< k multiplier for links along the lattice border
+};
+
+struct ClothModel {
+  Lattice lattice;
+  std::vector<double> mass_kg;          ///< [J*K]
+  std::vector<std::uint8_t> pinned;     ///< [J*K], 1 = position prescribed
+  std::array<LinkFamily, 4> links;      ///< row, column, two diagonals
+  double damping_per_s = 0.0;
+};
+
+/// Builds the cloth of `scene` on its fine lattice.
+ClothModel make_cloth_model(const Scene& scene);
+
+/// Node indices held by `pin` (contract: flag.pin).
+std::vector<std::uint8_t> pinned_nodes(const Lattice& lattice, PinSet pin);
+
+}  // namespace flagsim::physics

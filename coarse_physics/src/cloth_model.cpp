@@ -1,0 +1,56 @@
+#include "flagsim/coarse_physics/cloth_model.hpp"
+
+#include <cmath>
+
+namespace flagsim::physics {
+
+std::vector<std::uint8_t> pinned_nodes(const Lattice& lattice, PinSet pin) {
+  std::vector<std::uint8_t> pinned(lattice.node_count(), 0);
+  for (int j = 0; j < lattice.rows; ++j) {
+    for (int k = 0; k < lattice.cols; ++k) {
+      bool held = false;
+      switch (pin) {
+        case PinSet::kLeft: held = k == 0; break;
+        case PinSet::kRight: held = k == lattice.cols - 1; break;
+        case PinSet::kTop: held = j == 0; break;
+        case PinSet::kCorners:
+          held = (j == 0 || j == lattice.rows - 1) && (k == 0 || k == lattice.cols - 1);
+          break;
+        case PinSet::kNone: break;
+      }
+      pinned[lattice.index(j, k)] = held ? 1 : 0;
+    }
+  }
+  return pinned;
+}
+
+ClothModel make_cloth_model(const Scene& scene) {
+  ClothModel model;
+  model.lattice = scene.fine_lattice();
+  const Lattice& lattice = model.lattice;
+  const double dx = lattice.spacing_x_m, dy = lattice.spacing_y_m;
+  const double density = scene.flag.areal_density_kg_m2;
+
+  model.mass_kg.resize(lattice.node_count());
+  for (int j = 0; j < lattice.rows; ++j) {
+    const double row_share = (j == 0 || j == lattice.rows - 1) ? 0.5 : 1.0;
+    for (int k = 0; k < lattice.cols; ++k) {
+      const double col_share = (k == 0 || k == lattice.cols - 1) ? 0.5 : 1.0;
+      model.mass_kg[lattice.index(j, k)] = density * dx * dy * row_share * col_share;
+    }
+  }
+  model.pinned = pinned_nodes(lattice, scene.flag.pin);
+
+  const double stretch = scene.flag.stretch_modulus_n_m;
+  const double shear = scene.flag.shear_modulus_n_m;
+  const double diagonal = std::hypot(dx, dy);
+  const double k_diagonal = shear * diagonal * diagonal / (2.0 * dx * dy);
+  model.links[0] = {0, 1, dx, stretch * dy / dx, 0.5};
+  model.links[1] = {1, 0, dy, stretch * dx / dy, 0.5};
+  model.links[2] = {1, 1, diagonal, k_diagonal, 1.0};
+  model.links[3] = {1, -1, diagonal, k_diagonal, 1.0};
+  model.damping_per_s = scene.flag.damping_per_s;
+  return model;
+}
+
+}  // namespace flagsim::physics

@@ -1,0 +1,41 @@
+#include "flagsim/coarse_physics/initial_shape.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace flagsim::physics {
+namespace {
+
+// Uniform in [0, 1) from the top 53 bits: the same numbers on every standard
+// library (std::uniform_real_distribution is implementation-defined).
+double unit_uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+std::vector<double> smooth_perturbation(const Lattice& lattice, std::uint64_t seed,
+                                        double amplitude_m) {
+  constexpr int kModes = 3;
+  std::mt19937_64 rng(seed);
+  double weight[kModes], phase_u[kModes], phase_v[kModes];
+  for (int m = 0; m < kModes; ++m) {
+    weight[m] = 2.0 * unit_uniform(rng) - 1.0;
+    phase_u[m] = 2.0 * std::numbers::pi * unit_uniform(rng);
+    phase_v[m] = 2.0 * std::numbers::pi * unit_uniform(rng);
+  }
+  std::vector<double> z(lattice.node_count());
+  for (int j = 0; j < lattice.rows; ++j) {
+    const double v = double(j) / (lattice.rows - 1);
+    for (int k = 0; k < lattice.cols; ++k) {
+      const double u = double(k) / (lattice.cols - 1);
+      double sum = 0.0;
+      for (int m = 0; m < kModes; ++m)
+        sum += weight[m] * std::sin((m + 1) * std::numbers::pi * u + phase_u[m]) *
+               std::cos(m * std::numbers::pi * v + phase_v[m]);
+      z[lattice.index(j, k)] = amplitude_m * u * sum / kModes;
+    }
+  }
+  return z;
+}
+
+}  // namespace flagsim::physics

@@ -1,0 +1,139 @@
+#include "flagsim/coarse_physics/spring_damper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "flagsim/coarse_physics/aero_force.hpp"
+#include "flagsim/coarse_physics/bending_springs.hpp"
+#include "flagsim/coarse_physics/gravity_force.hpp"
+#include "flagsim/coarse_physics/initial_shape.hpp"
+#include "flagsim/coarse_physics/stretch_springs.hpp"
+
+namespace flagsim::physics {
+
+SpringDamperSolver::SpringDamperSolver(const Scene& scene)
+    : model_(make_cloth_model(scene)), pins_(scene.pole), flag_(scene.flag) {
+  rest_m_ = model_.lattice.rest_positions();
+  inverse_mass_.resize(model_.mass_kg.size());
+  for (std::size_t i = 0; i < inverse_mass_.size(); ++i) inverse_mass_[i] = 1.0 / model_.mass_kg[i];
+  forces_n_.assign(model_.lattice.node_count(), Vec3::Zero());
+
+  // The pipeline of force terms: only what the scene calls for is constructed.
+  terms_.push_back(std::make_unique<StretchSprings>(model_));
+  if (scene.bending) terms_.push_back(std::make_unique<BendingSprings>(model_, scene.bending->stiffness_n_m));
+  if (scene.gravity)
+    terms_.push_back(std::make_unique<GravityForce>(model_.mass_kg, scene.gravity->acceleration_m_s2));
+  if (scene.wind) {
+    // Speed bound for the stability estimate: the pole's speed plus the wind
+    // speed again for a flapping fly end (it can move about as fast as the wind).
+    const double cloth_speed = pins_.max_speed_m_s() + scene.wind->velocity_m_s.norm();
+    terms_.push_back(std::make_unique<AeroForce>(model_, *scene.wind,
+                                                 scene.flag.areal_density_kg_m2, cloth_speed));
+  }
+  for (const auto& term : terms_) effects_.emplace_back(term->name());
+  if (model_.damping_per_s > 0.0) effects_.emplace_back("damping");
+  if (scene.pole) effects_.emplace_back("pole");
+
+  frame_s_ = 1.0 / scene.fps;
+  stable_substep_s_ = compute_stable_substep();
+  const double safe = kStabilitySafety * stable_substep_s_;
+  const double needed = std::ceil(frame_s_ / safe - 1e-9);
+  substeps_per_frame_ = std::max(scene.solver.substeps, int(std::min(needed, 1e9)));
+}
+
+double SpringDamperSolver::compute_stable_substep() const {
+  std::vector<double> row_sum(model_.lattice.node_count(), 0.0);
+  double rate = 0.0;
+  for (const auto& term : terms_) {
+    term->add_stiffness_bound(row_sum);
+    rate = std::max(rate, term->velocity_rate_bound());
+  }
+  double omega2 = 0.0;
+  for (std::size_t i = 0; i < row_sum.size(); ++i)
+    if (!model_.pinned[i]) omega2 = std::max(omega2, row_sum[i] * inverse_mass_[i]);
+  double limit = std::numeric_limits<double>::infinity();
+  if (omega2 > 0.0) limit = 2.0 / std::sqrt(omega2);
+  if (rate > 0.0) limit = std::min(limit, 1.0 / rate);
+  return limit;
+}
+
+ClothState SpringDamperSolver::initial_state(std::uint64_t seed) const {
+  ClothState state;
+  state.x_m = rest_m_;
+  state.v_m_s.assign(rest_m_.size(), Vec3::Zero());
+  if (flag_.initial_perturbation_m > 0.0) {
+    const std::vector<double> z = smooth_perturbation(model_.lattice, seed, flag_.initial_perturbation_m);
+    for (std::size_t i = 0; i < z.size(); ++i)
+      if (!model_.pinned[i]) state.x_m[i].z() += z[i];
+  }
+  for (std::size_t i = 0; i < rest_m_.size(); ++i)
+    if (model_.pinned[i]) state.v_m_s[i] = pins_.velocity_m_s(0.0);
+  return state;
+}
+
+void SpringDamperSolver::register_stages(StageTimes& times) {
+  term_stage_.clear();
+  for (const auto& term : terms_) term_stage_.push_back(times.add(std::string(term->name())));
+  update_stage_ = times.add("integrate");
+}
+
+void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
+  const double dt = substep_s();
+  const double start = state.time_s;
+  for (int s = 0; s < substeps_per_frame_; ++s) {
+    step(state, dt, times);
+    // Time from the step count, so frames land exactly on t = n / fps.
+    state.time_s = start + (s + 1) * dt;
+  }
+}
+
+void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times) {
+  std::fill(forces_n_.begin(), forces_n_.end(), Vec3::Zero());
+  for (std::size_t t = 0; t < terms_.size(); ++t) {
+    if (times && !term_stage_.empty()) {
+      ScopedStageTimer timer(*times, term_stage_[t]);
+      terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_);
+    } else {
+      terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_);
+    }
+  }
+  auto update = [&] {
+    const double next_time = state.time_s + dt_s;
+    const Vec3 pin_offset = pins_.offset_m(next_time);
+    const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
+    const double damping = 1.0 / (1.0 + model_.damping_per_s * dt_s);
+    const std::size_t n = state.x_m.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (model_.pinned[i]) {
+        state.x_m[i] = rest_m_[i] + pin_offset;
+        state.v_m_s[i] = pin_velocity;
+      } else {
+        state.v_m_s[i] = (state.v_m_s[i] + (dt_s * inverse_mass_[i]) * forces_n_[i]) * damping;
+        state.x_m[i] += dt_s * state.v_m_s[i];
+      }
+    }
+    state.time_s = next_time;
+  };
+  if (times && update_stage_ >= 0) {
+    ScopedStageTimer timer(*times, update_stage_);
+    update();
+  } else {
+    update();
+  }
+}
+
+double SpringDamperSolver::kinetic_energy(const ClothState& state) const {
+  double total = 0.0;
+  for (std::size_t i = 0; i < state.v_m_s.size(); ++i)
+    total += 0.5 * model_.mass_kg[i] * state.v_m_s[i].squaredNorm();
+  return total;
+}
+
+double SpringDamperSolver::potential_energy(const ClothState& state) const {
+  double total = 0.0;
+  for (const auto& term : terms_) total += term->energy(state.x_m);
+  return total;
+}
+
+}  // namespace flagsim::physics

@@ -1,0 +1,40 @@
+#pragma once
+// The dense lattice of the cloth (paper 2.1): J rows by K columns of nodes.
+//
+// Topology only depends on (rows, cols); geometry is the rest state. Node (j, k)
+// rests at origin + (k * spacing_x, -j * spacing_y, 0) (contract: "Lattice and
+// coordinates"): row 0 is the top edge, column 0 the pole edge, the flag rests
+// in the z = 0 plane. Per-node data is stored row-major in one flat array,
+// index(j, k) = j * cols + k.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim {
+
+struct Lattice {
+  int rows = 0;              ///< J, >= 2
+  int cols = 0;              ///< K, >= 2
+  double spacing_x_m = 0.0;  ///< rest distance between neighbours along a row, m
+  double spacing_y_m = 0.0;  ///< rest distance between neighbours along a column, m
+  Vec3 origin_m = Vec3::Zero();  ///< rest position of node (0, 0), m
+
+  /// Lattice of a w x h m rectangle with J x K nodes (both >= 2).
+  static Lattice rectangle(int rows, int cols, double width_m, double height_m, const Vec3& origin_m);
+
+  std::size_t node_count() const { return static_cast<std::size_t>(rows) * cols; }
+  std::size_t index(int j, int k) const { return static_cast<std::size_t>(j) * cols + k; }
+  Vec3 rest_position(int j, int k) const {
+    return origin_m + Vec3(k * spacing_x_m, -j * spacing_y_m, 0.0);
+  }
+  /// All rest positions, row-major [J*K].
+  std::vector<Vec3> rest_positions() const;
+
+  /// Indices of the four corners, in the contract's order:
+  /// (0,0), (0,K-1), (J-1,0), (J-1,K-1).
+  std::array<std::size_t, 4> corners() const;
+};
+
+}  // namespace flagsim

@@ -1,0 +1,147 @@
+#pragma once
+// The scene: what the user asked for, validated once, immutable afterwards.
+//
+// Every quantity is SI (m, s, kg, N, Pa). An optional effect table (pole,
+// gravity, wind, bending, ...) is present exactly when the scene file has it;
+// a stage is built for it only then (contract: "Scene file").
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim {
+
+enum class Mode { kHybrid, kMassSpring, kBullet, kInfill };
+enum class PinSet { kLeft, kRight, kTop, kCorners, kNone };
+
+struct FlagSpec {
+  double width_m = 1.5;
+  double height_m = 1.0;
+  Vec3 origin_m = Vec3(0.0, 2.0, 0.0);
+  int fine_rows = 33;  ///< J
+  int fine_cols = 49;  ///< K
+  std::optional<std::array<int, 2>> coarse;  ///< [Jc, Kc], divides the fine lattice
+  double areal_density_kg_m2 = 0.2;
+  double stretch_modulus_n_m = 2.0e4;  ///< 2D Young's modulus of the cloth, N/m
+  double shear_modulus_n_m = 2.0e3;    ///< 2D in-plane shear modulus, N/m (extension key)
+  double damping_per_s = 0.1;
+  PinSet pin = PinSet::kLeft;
+  /// Amplitude of the seeded random out-of-plane (z) displacement of the free
+  /// nodes at t = 0, m (extension key). A flat flag in a wind along its plane
+  /// is an unstable equilibrium; this is what breaks the symmetry, reproducibly.
+  double initial_perturbation_m = 0.0;
+};
+
+/// [pole]: the pinned nodes move as rest + axis * amplitude * sin(2 pi f t).
+struct PoleMotion {
+  Vec3 axis_unit = Vec3::UnitY();  ///< normalised from the scene's axis
+  double amplitude_m = 0.0;
+  double frequency_hz = 0.0;
+};
+
+struct Gravity {
+  Vec3 acceleration_m_s2 = Vec3(0.0, -9.81, 0.0);
+};
+
+struct Gusts {
+  double amplitude = 0.0;  ///< fraction of the mean speed
+  double period_s = 1.0;
+};
+
+struct Turbulence {
+  double intensity = 0.0;  ///< std / mean speed
+  double length_scale_m = 1.0;
+};
+
+struct Wind {
+  Vec3 velocity_m_s = Vec3::Zero();
+  double drag = 1.0;           ///< normal-force coefficient of a flat plate
+  double lift = 0.5;           ///< lift coefficient
+  double air_density_kg_m3 = 1.225;
+  std::optional<Gusts> gusts;
+  std::optional<Turbulence> turbulence;
+};
+
+/// [bending]: bending rigidity of the cloth in the coarse physics.
+struct Bending {
+  double stiffness_n_m = 0.0;  ///< D, N m (moment per unit width per unit curvature)
+};
+
+/// [wrinkles]: the paper's step 3.5 (eqs. (1)-(13)).
+struct Wrinkles {
+  double fiber_radius_m = 0.0;
+  double fiber_modulus_pa = 0.0;
+  std::optional<double> k_prime;
+  std::optional<double> tolerance;
+  std::optional<int> rounds;
+};
+
+struct InfillSettings {
+  int relax_iterations = 0;
+};
+
+struct Solver {
+  std::string backend = "spring-damper";
+  int substeps = 1;     ///< minimum substeps per output frame
+  int iterations = 10;  ///< Bullet solver iterations
+};
+
+struct Keyframe {
+  double time_s = 0.0;
+  std::array<Vec3, 4> corners_m;  ///< contract corner order
+};
+
+struct Output {
+  std::string file;     ///< empty: chosen by the app
+  int every = 1;        ///< keep every n-th simulated frame
+  int flush_every = 10; ///< frames written between flushes to disk
+};
+
+struct Render {
+  std::string style = "shaded";
+  std::array<int, 2> size_px = {1280, 720};
+  std::string texture;
+};
+
+struct Limits {
+  double max_strain = 0.3;       ///< past it the run stops as diverged
+  double max_speed_m_s = 340.0;  ///< a node faster than this is a numerical blow-up
+};
+
+struct Scene {
+  std::string name;
+  Mode mode = Mode::kMassSpring;
+  double duration_s = 10.0;
+  double fps = 30.0;
+  std::uint64_t seed = 0;
+
+  FlagSpec flag;
+  std::optional<PoleMotion> pole;
+  std::optional<Gravity> gravity;  ///< absent, or present with zero acceleration: none
+  std::optional<Wind> wind;
+  std::optional<Bending> bending;
+  std::optional<Wrinkles> wrinkles;
+  std::optional<InfillSettings> infill;
+  Solver solver;
+  std::vector<Keyframe> keyframes;
+  Output output;
+  std::optional<Render> render;
+  Limits limits;
+
+  /// The scene as run (file plus --set overrides), as TOML text.
+  std::string toml_text;
+
+  /// Number of simulated frames, t = 0, 1/fps, ..., including the initial state.
+  int simulated_frames() const;
+  /// Dense lattice at rest.
+  Lattice fine_lattice() const;
+};
+
+const char* to_string(Mode mode);
+const char* to_string(PinSet pin);
+
+}  // namespace flagsim

@@ -1,0 +1,30 @@
+#pragma once
+// Reading a scene: TOML text -> validated Scene, or a UserError that names the
+// file, line, column and key, says what was expected and suggests near-miss names.
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "flagsim/core/scene.hpp"
+
+namespace flagsim {
+
+/// Parses and validates a scene.
+/// @param toml_text    the scene file's contents
+/// @param source_path  name used in error messages (the file path)
+/// @param overrides    "KEY=VALUE" strings (from --set), VALUE in TOML syntax; applied
+///                     on top of the file and checked exactly like it
+/// @throws UserError on any malformed, unknown, out-of-range or inconsistent key
+Scene parse_scene(std::string_view toml_text, std::string_view source_path,
+                  std::span<const std::string> overrides = {});
+
+/// Reads the file at `path` and parses it as above; an unreadable file is a UserError.
+Scene load_scene_file(const std::string& path, std::span<const std::string> overrides = {});
+
+/// The embedded default scene (scenes/default.toml, compiled into the binary).
+std::string_view default_scene_toml();
+
+/// The name error messages use for the embedded default scene.
+inline constexpr std::string_view kDefaultSceneName = "<default scene>";
+
+}  // namespace flagsim

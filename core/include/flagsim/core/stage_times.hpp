@@ -1,0 +1,48 @@
+#pragma once
+// Wall time of each pipeline stage, accumulated per output frame
+// (contract: /stats/stage_seconds [T, S] with attribute `stages`).
+#include <chrono>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace flagsim {
+
+class StageTimes {
+ public:
+  /// Registers a stage; returns its column. Stages are listed in pipeline order.
+  int add(std::string name) {
+    names_.push_back(std::move(name));
+    seconds_.push_back(0.0);
+    return int(names_.size()) - 1;
+  }
+  void add_seconds(int stage, double seconds) { seconds_[stage] += seconds; }
+  const std::vector<std::string>& names() const { return names_; }
+  /// Seconds per stage since the last reset.
+  std::span<const double> seconds() const { return seconds_; }
+  void reset() { std::fill(seconds_.begin(), seconds_.end(), 0.0); }
+
+ private:
+  std::vector<std::string> names_;
+  std::vector<double> seconds_;
+};
+
+/// Adds the lifetime of this object to one stage's time.
+class ScopedStageTimer {
+ public:
+  ScopedStageTimer(StageTimes& times, int stage)
+      : times_(times), stage_(stage), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedStageTimer() {
+    const auto elapsed = std::chrono::steady_clock::now() - start_;
+    times_.add_seconds(stage_, std::chrono::duration<double>(elapsed).count());
+  }
+  ScopedStageTimer(const ScopedStageTimer&) = delete;
+  ScopedStageTimer& operator=(const ScopedStageTimer&) = delete;
+
+ private:
+  StageTimes& times_;
+  int stage_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace flagsim

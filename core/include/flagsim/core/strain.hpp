@@ -1,0 +1,19 @@
+#pragma once
+// Strain statistics of a lattice state (contract: /stats/max_strain, /stats/mean_strain).
+#include <span>
+
+#include "flagsim/core/lattice.hpp"
+
+namespace flagsim {
+
+struct StrainStats {
+  double max = 0.0;   ///< max over all row and column neighbour links of |d - S| / S
+  double mean = 0.0;  ///< mean of the same over all links
+};
+
+/// Strain of every row link ((j,k)-(j,k+1), rest S = spacing_x) and column link
+/// ((j,k)-(j+1,k), rest S = spacing_y). positions_m: [J*K] row-major, m.
+/// A non-finite position gives a non-finite max (NaN propagates), never a silent 0.
+StrainStats link_strain(const Lattice& lattice, std::span<const Vec3> positions_m);
+
+}  // namespace flagsim

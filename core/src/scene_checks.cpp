@@ -1,0 +1,80 @@
+#include "scene_checks.hpp"
+
+#include <fmt/format.h>
+
+#include "flagsim/core/errors.hpp"
+
+namespace flagsim::detail {
+namespace {
+
+// 2^24 nodes: ~400 MB per double state vector, far past any lattice we mean to run.
+constexpr double kMaxNodes = 16'777'216.0;
+
+[[noreturn]] void fail_at(const TableReader& root, std::string_view dotted,
+                          const std::string& message) {
+  const toml::node* node = root.table().at_path(dotted).node();
+  const std::string place = node ? where_key(std::string(dotted), node->source()) : root.where_of("");
+  throw UserError(fmt::format("{}: {}: {}", place, dotted, message));
+}
+
+// Coarse sizes n such that (fine - 1) is a multiple of (n - 1).
+std::string dividing_sizes(int fine) {
+  std::string list;
+  for (int n = 2; n <= fine; ++n)
+    if ((fine - 1) % (n - 1) == 0) list += fmt::format("{}{}", list.empty() ? "" : ", ", n);
+  return list;
+}
+
+}  // namespace
+
+void check_consistency(const Scene& scene, const TableReader& root, const TableReader& scene_in,
+                       const TableReader& flag_in) {
+  const FlagSpec& flag = scene.flag;
+  if (double(flag.fine_rows) * flag.fine_cols > kMaxNodes)
+    flag_in.fail("fine", fmt::format("{} x {} = {:.0f} nodes is more than the {:.0f} allowed",
+                                     flag.fine_rows, flag.fine_cols,
+                                     double(flag.fine_rows) * flag.fine_cols, kMaxNodes));
+  if (flag.coarse) {
+    const auto [rows, cols] = *flag.coarse;
+    const int fine[2] = {flag.fine_rows, flag.fine_cols};
+    const int coarse[2] = {rows, cols};
+    const char* axis[2] = {"rows", "columns"};
+    for (int a = 0; a < 2; ++a) {
+      if (coarse[a] > fine[a] || (fine[a] - 1) % (coarse[a] - 1) != 0)
+        flag_in.fail("coarse",
+                     fmt::format("[{}, {}] does not divide flag.fine = [{}, {}]: {} - 1 = {} is "
+                                 "not a multiple of {} - 1; coarse {} that work: {}",
+                                 rows, cols, fine[0], fine[1], fine[a], fine[a] - 1, coarse[a],
+                                 axis[a], dividing_sizes(fine[a])));
+    }
+  }
+  if (scene.mode == Mode::kHybrid && !flag.coarse)
+    scene_in.fail("mode", "hybrid mode needs flag.coarse = [Jc, Kc], the lattice the physics runs on");
+  if (scene.pole && flag.pin == PinSet::kNone)
+    fail_at(root, "pole", "a moving pole needs pinned nodes; set flag.pin (e.g. \"left\")");
+  if (scene.mode == Mode::kInfill && scene.keyframes.empty())
+    scene_in.fail("mode", "infill mode needs [[keyframe]] tables with the corner positions");
+}
+
+void reject_unbuilt_features(const Scene& scene, const TableReader& root,
+                             const TableReader& scene_in) {
+  constexpr const char* kHint = "is not available in this version of flag-sim";
+  if (scene.mode != Mode::kMassSpring)
+    scene_in.fail("mode", fmt::format("mode \"{}\" {} (available: \"mass-spring\")",
+                                      to_string(scene.mode), kHint));
+  if (scene.solver.backend != "spring-damper")
+    fail_at(root, "solver.backend",
+            fmt::format("\"{}\" {} (available: \"spring-damper\")", scene.solver.backend, kHint));
+  const auto reject_table = [&](bool present, std::string_view dotted, std::string_view what) {
+    if (present)
+      fail_at(root, dotted, fmt::format("{} {}; remove the table", what, kHint));
+  };
+  reject_table(scene.wind && scene.wind->gusts, "wind.gusts", "gusting wind");
+  reject_table(scene.wind && scene.wind->turbulence, "wind.turbulence", "turbulent wind");
+  reject_table(scene.wrinkles.has_value(), "wrinkles", "the wrinkle step (paper 3.5)");
+  reject_table(scene.infill.has_value(), "infill", "the infill (paper 3.1-3.5)");
+  reject_table(scene.render.has_value(), "render", "rendering");
+  reject_table(!scene.keyframes.empty(), "keyframe", "keyframed corners (infill mode)");
+}
+
+}  // namespace flagsim::detail

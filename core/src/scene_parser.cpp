@@ -1,0 +1,324 @@
+#include "flagsim/core/scene_parser.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "flagsim/core/errors.hpp"
+#include "scene_checks.hpp"
+#include "toml_reader.hpp"
+
+namespace flagsim {
+namespace {
+
+using detail::Bound;
+using detail::TableReader;
+
+// Largest lattice side and node count accepted: a 8193 x 8193 lattice already
+// needs ~1.6 GB per state vector; past this a typo is far likelier than intent.
+constexpr long long kMaxLatticeSide = 8193;
+constexpr long long kMaxFrames = 10'000'000;
+
+// Every key of the schema, for "did you mean" across tables.
+constexpr std::string_view kAllKeys[] = {
+    "scene.name", "scene.mode", "scene.duration", "scene.fps", "scene.seed", "scene.frames",
+    "flag.size", "flag.origin", "flag.fine", "flag.coarse", "flag.areal_density",
+    "flag.stretch_modulus", "flag.shear_modulus", "flag.damping", "flag.pin",
+    "flag.initial_perturbation", "pole.motion",
+    "pole.axis", "pole.amplitude", "pole.frequency", "gravity.acceleration", "wind.velocity",
+    "wind.drag", "wind.lift", "wind.air_density", "wind.gusts", "wind.turbulence",
+    "bending.stiffness", "wrinkles.fiber_radius", "wrinkles.fiber_modulus", "wrinkles.k_prime",
+    "wrinkles.tolerance", "wrinkles.rounds", "infill.relax_iterations", "solver.backend",
+    "solver.substeps", "solver.iterations", "keyframe.time", "keyframe.corners", "output.file",
+    "output.every", "output.flush_every", "render.style", "render.size", "render.texture",
+    "limits.max_strain", "limits.max_speed"};
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return "";
+  const auto last = s.find_last_not_of(" \t");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+void merge_into(toml::table& target, const toml::table& patch) {
+  for (auto&& [key, node] : patch) {
+    toml::node* existing = target.get(key.str());
+    if (existing && existing->is_table() && node.is_table()) {
+      merge_into(*existing->as_table(), *node.as_table());
+    } else {
+      target.insert_or_assign(key, node);
+    }
+  }
+}
+
+// --set KEY=VALUE: VALUE is TOML; a bare word (mass-spring) is taken as a string.
+// Returns the dotted key, for error messages.
+std::string apply_override(toml::table& root, const std::string& assignment) {
+  const std::string label = "--set " + assignment;
+  const auto equals = assignment.find('=');
+  if (equals == std::string::npos || trim(assignment.substr(0, equals)).empty())
+    throw UserError(label + ": expected KEY=VALUE with a TOML value, e.g. --set flag.fine=[65,97]");
+  const std::string key = trim(assignment.substr(0, equals));
+  const std::string value = trim(assignment.substr(equals + 1));
+  toml::table patch;
+  try {
+    patch = toml::parse(key + " = " + value, label);
+  } catch (const toml::parse_error& first_error) {
+    const bool bare_word = !value.empty() && value.find_first_of("\"'[]{}=, ") == std::string::npos;
+    try {
+      if (!bare_word) throw;
+      patch = toml::parse(key + " = \"" + value + "\"", label);
+    } catch (const toml::parse_error&) {
+      throw UserError(fmt::format("{}: not valid TOML ({})", label, first_error.description()));
+    }
+  }
+  merge_into(root, patch);
+  return key;
+}
+
+Mode parse_mode(const std::string& text) {
+  if (text == "hybrid") return Mode::kHybrid;
+  if (text == "bullet") return Mode::kBullet;
+  if (text == "infill") return Mode::kInfill;
+  return Mode::kMassSpring;
+}
+
+PinSet parse_pin(const std::string& text) {
+  if (text == "right") return PinSet::kRight;
+  if (text == "top") return PinSet::kTop;
+  if (text == "corners") return PinSet::kCorners;
+  if (text == "none") return PinSet::kNone;
+  return PinSet::kLeft;
+}
+
+void read_scene_table(TableReader& in, Scene& scene, std::string_view source_path) {
+  std::string stem = std::filesystem::path(std::string(source_path)).stem().string();
+  scene.name = in.string("name", stem.empty() ? "scene" : stem);
+  scene.mode = parse_mode(in.choice("mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "infill"}));
+  scene.fps = in.real("fps", 30.0, Bound{0.0, 10000.0, true}, "frames per second");
+  scene.duration_s = in.real("duration", 10.0, Bound::positive(), "s");
+  if (auto frames = in.optional_integer("frames", 1, kMaxFrames))
+    scene.duration_s = double(*frames - 1) / scene.fps;  // extension key, set by --frames
+  scene.seed = std::uint64_t(in.integer("seed", 0, 0, std::numeric_limits<long long>::max()));
+  if (scene.duration_s * scene.fps + 1.0 > double(kMaxFrames))
+    in.fail("duration", fmt::format("duration * fps gives {:.0f} frames; at most {} are allowed",
+                                    scene.duration_s * scene.fps, kMaxFrames));
+}
+
+void read_flag_table(TableReader& in, FlagSpec& flag) {
+  const auto size = in.real_pair("size", {flag.width_m, flag.height_m},
+                                 Bound{0.0, 1.0e4, true}, "[w, h] in m");
+  flag.width_m = size[0];
+  flag.height_m = size[1];
+  flag.origin_m = in.vec3("origin", flag.origin_m, "m");
+  if (auto fine = in.int_pair("fine", 2, kMaxLatticeSide, "[J, K] nodes")) {
+    flag.fine_rows = (*fine)[0];
+    flag.fine_cols = (*fine)[1];
+  }
+  flag.coarse = in.int_pair("coarse", 2, kMaxLatticeSide, "[Jc, Kc] nodes");
+  flag.areal_density_kg_m2 = in.real("areal_density", flag.areal_density_kg_m2,
+                                     Bound{0.0, 1.0e4, true}, "kg/m^2");
+  flag.stretch_modulus_n_m = in.real("stretch_modulus", flag.stretch_modulus_n_m,
+                                     Bound{0.0, 1.0e12, true}, "N/m");
+  // Default shear stiffness: a tenth of the stretch stiffness, loosely woven cloth.
+  flag.shear_modulus_n_m = in.real("shear_modulus", flag.stretch_modulus_n_m / 10.0,
+                                   Bound{0.0, 1.0e12, false}, "N/m");
+  flag.damping_per_s = in.real("damping", flag.damping_per_s, Bound{0.0, 1.0e6, false}, "1/s");
+  flag.pin = parse_pin(in.choice("pin", "left", {"left", "right", "top", "corners", "none"}));
+  flag.initial_perturbation_m = in.real("initial_perturbation", 0.0, Bound::between(0.0, 1.0e3), "m");
+}
+
+void read_effect_tables(TableReader& root, Scene& scene) {
+  if (const toml::table* t = root.subtable("pole")) {
+    TableReader in(*t, "pole", root.where_of("pole"));
+    in.choice("motion", "sine", {"sine"});
+    PoleMotion pole;
+    const Vec3 axis = in.vec3("axis", Vec3::UnitY(), "(direction)");
+    if (axis.norm() == 0.0) in.fail("axis", "expected a non-zero direction [x, y, z]");
+    pole.axis_unit = axis.normalized();
+    pole.amplitude_m = in.real("amplitude", 0.1, Bound::between(0.0, 1.0e3), "m");
+    pole.frequency_hz = in.real("frequency", 1.0, Bound::between(0.0, 1.0e4), "Hz");
+    in.finish(kAllKeys);
+    scene.pole = pole;
+  }
+  if (const toml::table* t = root.subtable("gravity")) {
+    TableReader in(*t, "gravity", root.where_of("gravity"));
+    Gravity gravity;
+    gravity.acceleration_m_s2 = in.vec3("acceleration", gravity.acceleration_m_s2, "m/s^2");
+    in.finish(kAllKeys);
+    if (gravity.acceleration_m_s2.norm() > 0.0) scene.gravity = gravity;
+  }
+  if (const toml::table* t = root.subtable("wind")) {
+    TableReader in(*t, "wind", root.where_of("wind"));
+    Wind wind;
+    wind.velocity_m_s = in.vec3("velocity", wind.velocity_m_s, "m/s");
+    wind.drag = in.real("drag", wind.drag, Bound::between(0.0, 100.0), "");
+    wind.lift = in.real("lift", wind.lift, Bound::between(0.0, 100.0), "");
+    wind.air_density_kg_m3 = in.real("air_density", wind.air_density_kg_m3,
+                                     Bound{0.0, 1.0e4, true}, "kg/m^3");
+    if (const toml::table* g = in.subtable("gusts")) {
+      TableReader gin(*g, "wind.gusts", in.where_of("gusts"));
+      wind.gusts = Gusts{gin.real("amplitude", 0.2, Bound::between(0.0, 10.0), "(fraction)"),
+                         gin.real("period", 2.0, Bound::positive(), "s")};
+      gin.finish(kAllKeys);
+    }
+    if (const toml::table* tt = in.subtable("turbulence")) {
+      TableReader tin(*tt, "wind.turbulence", in.where_of("turbulence"));
+      wind.turbulence = Turbulence{tin.real("intensity", 0.1, Bound::between(0.0, 10.0), ""),
+                                   tin.real("length_scale", 1.0, Bound::positive(), "m")};
+      tin.finish(kAllKeys);
+    }
+    in.finish(kAllKeys);
+    scene.wind = wind;
+  }
+  if (const toml::table* t = root.subtable("bending")) {
+    TableReader in(*t, "bending", root.where_of("bending"));
+    scene.bending = Bending{in.real("stiffness", 1.0e-4, Bound::non_negative(), "N m")};
+    in.finish(kAllKeys);
+  }
+}
+
+void read_infill_tables(TableReader& root, Scene& scene) {
+  if (const toml::table* t = root.subtable("wrinkles")) {
+    TableReader in(*t, "wrinkles", root.where_of("wrinkles"));
+    Wrinkles w;
+    w.fiber_radius_m = in.real("fiber_radius", 1.0e-3, Bound::positive(), "m");
+    w.fiber_modulus_pa = in.real("fiber_modulus", 1.0e9, Bound::positive(), "Pa");
+    w.k_prime = in.optional_real("k_prime", Bound::non_negative(), "");
+    w.tolerance = in.optional_real("tolerance", Bound::non_negative(), "(relative)");
+    if (auto rounds = in.optional_integer("rounds", 0, 1000)) w.rounds = int(*rounds);
+    in.finish(kAllKeys);
+    scene.wrinkles = w;
+  }
+  if (const toml::table* t = root.subtable("infill")) {
+    TableReader in(*t, "infill", root.where_of("infill"));
+    scene.infill = InfillSettings{int(in.integer("relax_iterations", 20, 0, 100000))};
+    in.finish(kAllKeys);
+  }
+  if (const toml::node* frames = root.table().get("keyframe")) {
+    root.allow("keyframe");
+    const toml::array* list = frames->as_array();
+    if (!list || !list->is_array_of_tables())
+      root.fail("keyframe", "expected [[keyframe]] tables, each with time and corners");
+    for (const toml::node& item : *list) {
+      TableReader in(*item.as_table(), "keyframe", detail::where(item.source()));
+      Keyframe key;
+      key.time_s = in.real("time", 0.0, Bound::non_negative(), "s");
+      const toml::node* corners = in.table().get("corners");
+      in.allow("corners");
+      const toml::array* array = corners ? corners->as_array() : nullptr;
+      if (!array || array->size() != 4)
+        in.fail("corners", "expected 4 corners [[x,y,z], ...] in the order (0,0), (0,K-1), (J-1,0), (J-1,K-1)");
+      for (int c = 0; c < 4; ++c) {
+        toml::table holder;
+        holder.insert("corner", *array->get(c));
+        TableReader corner(holder, "keyframe.corners", in.where_of("corners"));
+        key.corners_m[c] = corner.vec3("corner", Vec3::Zero(), "m");
+      }
+      in.finish(kAllKeys);
+      if (!scene.keyframes.empty() && key.time_s <= scene.keyframes.back().time_s)
+        in.fail("time", fmt::format("keyframes must be in increasing time; {} s follows {} s",
+                                    key.time_s, scene.keyframes.back().time_s));
+      scene.keyframes.push_back(key);
+    }
+  }
+}
+
+void read_run_tables(TableReader& root, Scene& scene) {
+  if (const toml::table* t = root.subtable("solver")) {
+    TableReader in(*t, "solver", root.where_of("solver"));
+    scene.solver.backend = in.choice("backend", "spring-damper", {"spring-damper", "bullet"});
+    scene.solver.substeps = int(in.integer("substeps", 1, 1, 1'000'000));
+    scene.solver.iterations = int(in.integer("iterations", 10, 1, 10'000));
+    in.finish(kAllKeys);
+  }
+  if (const toml::table* t = root.subtable("output")) {
+    TableReader in(*t, "output", root.where_of("output"));
+    scene.output.file = in.string("file", "");
+    scene.output.every = int(in.integer("every", 1, 1, kMaxFrames));
+    scene.output.flush_every = int(in.integer("flush_every", 10, 1, kMaxFrames));
+    in.finish(kAllKeys);
+  }
+  if (const toml::table* t = root.subtable("render")) {
+    TableReader in(*t, "render", root.where_of("render"));
+    Render render;
+    render.style = in.choice("style", "shaded", {"wireframe", "shaded", "textured"});
+    if (auto size = in.int_pair("size", 16, 16384, "[w, h] pixels")) render.size_px = *size;
+    render.texture = in.string("texture", "");
+    in.finish(kAllKeys);
+    scene.render = render;
+  }
+  if (const toml::table* t = root.subtable("limits")) {
+    TableReader in(*t, "limits", root.where_of("limits"));
+    scene.limits.max_strain = in.real("max_strain", scene.limits.max_strain, Bound::positive(), "");
+    scene.limits.max_speed_m_s =
+        in.real("max_speed", scene.limits.max_speed_m_s, Bound::positive(), "m/s");
+    in.finish(kAllKeys);
+  }
+}
+
+Scene build_scene(const toml::table& root, std::string_view source_path) {
+  Scene scene;
+  const std::string top = fmt::format("{}:1:1", source_path);
+  TableReader in(root, "", top);
+  static const toml::table empty;
+  const toml::table* scene_table = in.subtable("scene");
+  TableReader scene_in(scene_table ? *scene_table : empty, "scene", top);
+  read_scene_table(scene_in, scene, source_path);
+  scene_in.finish(kAllKeys);
+
+  const toml::table* flag_table = in.subtable("flag");
+  TableReader flag_in(flag_table ? *flag_table : empty, "flag", top);
+  read_flag_table(flag_in, scene.flag);
+  flag_in.finish(kAllKeys);
+
+  read_effect_tables(in, scene);
+  read_infill_tables(in, scene);
+  read_run_tables(in, scene);
+  in.finish(kAllKeys);
+
+  // What this build cannot do is said first: "hybrid needs flag.coarse" would
+  // send the user fixing a scene that could not run anyway.
+  detail::reject_unbuilt_features(scene, in, scene_in);
+  detail::check_consistency(scene, in, scene_in, flag_in);
+
+  std::ostringstream text;
+  text << toml::toml_formatter(root) << "\n";
+  scene.toml_text = text.str();
+  return scene;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, std::string_view source_path,
+                  std::span<const std::string> overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_path);
+  } catch (const toml::parse_error& error) {
+    throw UserError(fmt::format("{}: invalid TOML: {}", detail::where(error.source()),
+                                error.description()));
+  }
+  std::vector<std::pair<std::string, std::string>> labels;
+  for (const std::string& assignment : overrides)
+    labels.emplace_back(apply_override(root, assignment), "--set " + assignment);
+  const detail::OverrideLabels scope(std::move(labels));
+  return build_scene(root, source_path);
+}
+
+Scene load_scene_file(const std::string& path, std::span<const std::string> overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw UserError(fmt::format("{}: is a directory, expected a scene file (.toml)", path));
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw UserError(fmt::format("{}: cannot open scene file (does it exist?)", path));
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parse_scene(text.str(), path, overrides);
+}
+
+}  // namespace flagsim

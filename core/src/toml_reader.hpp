@@ -1,0 +1,100 @@
+#pragma once
+// Typed, range-checked reads from one TOML table, each marking its key as known,
+// so that finish() can reject the keys nobody read (unknown or misspelt).
+// Every failure throws UserError "FILE:LINE:COL: KEY: expected ..., got ...".
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim::detail {
+
+/// "FILE:LINE:COL" of a node read from the scene file.
+std::string where(const toml::source_region& source);
+
+/// While alive, errors about the given dotted keys (or keys under them) name
+/// the --set override they came from: toml++ drops the source of a node copied
+/// into the scene table, so the overrides are remembered here. One per parse.
+class OverrideLabels {
+ public:
+  explicit OverrideLabels(std::vector<std::pair<std::string, std::string>> key_to_label);
+  ~OverrideLabels();
+  OverrideLabels(const OverrideLabels&) = delete;
+  OverrideLabels& operator=(const OverrideLabels&) = delete;
+};
+
+/// Where dotted key `key` (written at `source`) came from: its --set override,
+/// or FILE:LINE:COL.
+std::string where_key(const std::string& key, const toml::source_region& source);
+
+/// An allowed interval for a number, with its description for messages.
+struct Bound {
+  double low = -1e300;
+  double high = 1e300;
+  bool low_open = false;  ///< true: value must be > low (else >= low)
+  static Bound positive() { return {0.0, 1e300, true}; }
+  static Bound non_negative() { return {0.0, 1e300, false}; }
+  static Bound any() { return {}; }
+  static Bound between(double lo, double hi) { return {lo, hi, false}; }
+  bool contains(double x) const { return (low_open ? x > low : x >= low) && x <= high; }
+  std::string describe() const;
+};
+
+class TableReader {
+ public:
+  /// @param table   the table to read
+  /// @param prefix  its dotted name ("flag", "wind.gusts"); "" for the root
+  /// @param fallback_where  location used when the table has no source (it was absent)
+  TableReader(const toml::table& table, std::string prefix, std::string fallback_where);
+
+  const toml::table& table() const { return table_; }
+  std::string key_name(std::string_view key) const;
+  /// Location of the key's value (or of the table when the key is absent).
+  std::string where_of(std::string_view key) const;
+
+  bool has(std::string_view key) const { return table_.contains(key); }
+  double real(std::string_view key, double fallback, Bound bound, std::string_view unit);
+  std::optional<double> optional_real(std::string_view key, Bound bound, std::string_view unit);
+  long long integer(std::string_view key, long long fallback, long long low, long long high);
+  std::optional<long long> optional_integer(std::string_view key, long long low, long long high);
+  std::string string(std::string_view key, std::string fallback);
+  /// One of `choices`; the message lists them and suggests the closest.
+  std::string choice(std::string_view key, std::string fallback,
+                     std::vector<std::string_view> choices);
+  /// [x, y, z] of finite numbers.
+  Vec3 vec3(std::string_view key, const Vec3& fallback, std::string_view unit);
+  /// [a, b] of numbers inside `bound`.
+  std::array<double, 2> real_pair(std::string_view key, std::array<double, 2> fallback,
+                                  Bound bound, std::string_view what);
+  /// [a, b] of integers in [low, high].
+  std::optional<std::array<int, 2>> int_pair(std::string_view key, long long low,
+                                             long long high, std::string_view what);
+  /// The sub-table at `key`, if present (must be a table).
+  const toml::table* subtable(std::string_view key);
+  /// Marks a key as known without reading it (it is read elsewhere).
+  void allow(std::string_view key) { known_.emplace_back(key); }
+  /// Throws for the first key that no read asked for, with a suggestion.
+  /// `elsewhere` are dotted names of all keys in the schema, for "did you mean flag.pin?".
+  void finish(std::span<const std::string_view> elsewhere = {}) const;
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+
+ private:
+  const toml::node* lookup(std::string_view key);
+  [[noreturn]] void expected(std::string_view key, const toml::node& node,
+                             const std::string& what) const;
+
+  const toml::table& table_;
+  std::string prefix_;
+  std::string fallback_where_;
+  std::vector<std::string> known_;
+};
+
+}  // namespace flagsim::detail

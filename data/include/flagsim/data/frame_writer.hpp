@@ -1,0 +1,81 @@
+#pragma once
+// Writes a run to HDF5 (contract: "Output file", format flag-sim/1).
+//
+// The file is created as OUT.h5.partial with status "running", one frame
+// appended at a time (datasets grow along their first axis), flushed to disk
+// every `flush_every` frames so that a killed run leaves a file readable up to
+// the last flush, and renamed to OUT.h5 by finish(), which also writes the
+// XDMF sidecar OUT.xdmf for ParaView.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "flagsim/core/lattice.hpp"
+
+namespace flagsim::data {
+
+inline constexpr const char* kFormat = "flag-sim/1";
+
+/// Root attributes describing the run.
+struct RunInfo {
+  std::string mode;
+  std::vector<std::string> effects;  ///< in pipeline order
+  std::string scene_toml;            ///< the scene as run
+  std::string version;
+  std::uint64_t seed = 0;
+  std::vector<std::string> stages;   ///< columns of /stats/stage_seconds
+  /// Column of `stages` that receives the time write_frame() itself takes
+  /// (positions and time), or -1.
+  int output_stage = -1;
+  /// Further numeric root attributes (substep_seconds, ...).
+  std::vector<std::pair<std::string, double>> numbers;
+};
+
+/// Per-frame statistics.
+struct FrameStats {
+  double max_strain = 0.0;
+  double mean_strain = 0.0;
+  std::span<const double> stage_seconds;  ///< one per RunInfo::stages
+  double wall_seconds = 0.0;  ///< since the last written frame, before this write (added)
+  double kinetic_energy_j = 0.0;
+};
+
+class FrameWriter {
+ public:
+  /// Creates `path`.partial. Throws UserError if it cannot be created (a bad
+  /// output path is the user's to fix) - nothing is left behind then.
+  FrameWriter(std::string path, const Lattice& lattice, const RunInfo& info, int flush_every);
+  ~FrameWriter();
+  FrameWriter(const FrameWriter&) = delete;
+  FrameWriter& operator=(const FrameWriter&) = delete;
+
+  /// Appends one frame. positions_m: [J*K] row-major. The time spent writing is
+  /// added to the output stage's column of this frame. Throws IoError on failure.
+  void write_frame(double time_s, std::span<const Vec3> positions_m, const FrameStats& stats);
+  /// Sets the status ("complete", "diverged", "interrupted"), adds `reason` as
+  /// root attribute `status_reason` when non-empty, flushes, closes, renames
+  /// the file to its final name and writes the XDMF sidecar. Throws IoError.
+  void finish(const std::string& status, const std::string& reason = "");
+
+  int frames_written() const { return frames_; }
+  const std::string& path() const { return path_; }
+  std::string partial_path() const { return path_ + ".partial"; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string path_;
+  Lattice lattice_;
+  int flush_every_;
+  int frames_ = 0;
+};
+
+/// The XDMF text for `frames` frames of `h5_name` (a path relative to the
+/// sidecar) with the given frame times.
+std::string xdmf_text(const std::string& h5_name, const Lattice& lattice,
+                      std::span<const double> times_s);
+
+}  // namespace flagsim::data

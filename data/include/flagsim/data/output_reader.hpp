@@ -1,0 +1,49 @@
+#pragma once
+// Reads a flag-sim output file back (for `flag-sim info`, tests and, later,
+// rendering). Foreign or unreadable files are the user's to fix: UserError.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim::data {
+
+class OutputReader {
+ public:
+  /// Opens `path` read-only. Throws UserError if it is missing, not HDF5, or
+  /// not a flag-sim file (root attribute format = "flag-sim/1").
+  explicit OutputReader(const std::string& path);
+  ~OutputReader();
+  OutputReader(const OutputReader&) = delete;
+  OutputReader& operator=(const OutputReader&) = delete;
+
+  /// A string root attribute ("" if absent).
+  std::string attribute(const char* name) const;
+  /// A numeric root attribute, or `fallback`.
+  double number_attribute(const char* name, double fallback) const;
+  long long seed() const;
+
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+  int frame_count() const { return frames_; }
+
+  std::vector<double> times_s() const;
+  /// Positions of frame t, [J*K] m (stored as float32).
+  std::vector<Vec3> positions(int frame) const;
+  std::vector<Vec3> rest_positions() const;
+  /// A [T] float series under /stats ("max_strain", "wall_seconds", ...).
+  std::vector<double> stat(const char* name) const;
+  /// /stats/stage_seconds as [T][S], and the stage names.
+  std::vector<std::vector<double>> stage_seconds() const;
+  std::vector<std::string> stage_names() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string path_;
+  int rows_ = 0, cols_ = 0, frames_ = 0;
+};
+
+}  // namespace flagsim::data

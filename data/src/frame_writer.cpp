@@ -1,0 +1,190 @@
+#include "flagsim/data/frame_writer.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "flagsim/core/errors.hpp"
+#include "h5_handle.hpp"
+
+namespace flagsim::data {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Growable dataset of `element_type` with shape [T, tail...], chunked one
+// frame (or, for small rows, 256 frames) at a time.
+h5::Handle make_series(hid_t parent, const char* name, hid_t element_type,
+                       std::vector<hsize_t> tail) {
+  std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{1};
+  hsize_t row = 1;
+  for (hsize_t d : tail) {
+    dims.push_back(d);
+    max_dims.push_back(d);
+    chunk.push_back(d);
+    row *= d;
+  }
+  if (row < 64) chunk[0] = 256;
+  h5::Handle space = h5::dataspace(H5Screate_simple(int(dims.size()), dims.data(), max_dims.data()));
+  h5::Handle props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_chunk(props.get(), int(chunk.size()), chunk.data());
+  H5Pset_obj_track_times(props.get(), false);  // no timestamps: same input, same bytes
+  return h5::dataset(H5Dcreate2(parent, name, element_type, space.get(), H5P_DEFAULT, props.get(),
+                                H5P_DEFAULT));
+}
+
+h5::Handle make_group(hid_t parent, const char* name) {
+  h5::Handle props = h5::plist(H5Pcreate(H5P_GROUP_CREATE));
+  H5Pset_obj_track_times(props.get(), false);
+  return h5::group(H5Gcreate2(parent, name, H5P_DEFAULT, props.get(), H5P_DEFAULT));
+}
+
+// Appends one row (frame `index`) of `count` elements to a series dataset.
+bool append_row(hid_t dataset, hsize_t index, hid_t memory_type, const void* data) {
+  h5::Handle space = h5::dataspace(H5Dget_space(dataset));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  dims[0] = index + 1;
+  if (H5Dset_extent(dataset, dims.data()) < 0) return false;
+  h5::Handle file_space = h5::dataspace(H5Dget_space(dataset));
+  std::vector<hsize_t> start(std::size_t(rank), 0), count = dims;
+  start[0] = index;
+  count[0] = 1;
+  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  h5::Handle memory_space = h5::dataspace(H5Screate_simple(rank, count.data(), nullptr));
+  return H5Dwrite(dataset, memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, data) >= 0;
+}
+
+}  // namespace
+
+struct FrameWriter::Impl {
+  h5::Handle file;
+  h5::Handle time, positions, max_strain, mean_strain, stage_seconds, wall_seconds, kinetic;
+  std::vector<float> position_buffer;
+  std::vector<double> times;
+  std::size_t stage_count = 0;
+  int output_stage = -1;
+};
+
+FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo& info,
+                         int flush_every)
+    : impl_(std::make_unique<Impl>()), path_(std::move(path)), lattice_(lattice),
+      flush_every_(flush_every) {
+  h5::silence_library_errors();
+  const fs::path target(path_);
+  std::error_code ec;
+  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
+  if (fs::is_directory(target, ec))
+    throw UserError(fmt::format("{}: is a directory; give an output file name such as {}/run.h5",
+                                path_, path_));
+  const std::string partial = partial_path();
+  fs::remove(partial, ec);
+  h5::Handle create = h5::plist(H5Pcreate(H5P_FILE_CREATE));
+  H5Pset_obj_track_times(create.get(), false);
+  impl_->file = h5::file(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, create.get(), H5P_DEFAULT));
+  if (!impl_->file.valid())
+    throw UserError(fmt::format("{}: cannot create the output file (is the directory writable?)",
+                                path_));
+
+  const hid_t root = impl_->file.get();
+  bool ok = h5::write_string_attribute(root, "format", kFormat) &&
+            h5::write_string_attribute(root, "status", "running") &&
+            h5::write_string_attribute(root, "mode", info.mode) &&
+            h5::write_string_attribute(root, "effects", fmt::format("{}", fmt::join(info.effects, ","))) &&
+            h5::write_string_attribute(root, "scene", info.scene_toml) &&
+            h5::write_string_attribute(root, "version", info.version) &&
+            h5::write_int_attribute(root, "seed", (long long)info.seed);
+  for (const auto& [name, value] : info.numbers)
+    ok = ok && h5::write_double_attribute(root, name.c_str(), value);
+
+  const hsize_t rows = hsize_t(lattice.rows), cols = hsize_t(lattice.cols);
+  h5::Handle frames = make_group(root, "frames");
+  h5::Handle stats = make_group(root, "stats");
+  h5::Handle lattice_group = make_group(root, "lattice");
+  impl_->time = make_series(frames.get(), "time", H5T_IEEE_F64LE, {});
+  impl_->positions = make_series(frames.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3});
+  impl_->max_strain = make_series(stats.get(), "max_strain", H5T_IEEE_F32LE, {});
+  impl_->mean_strain = make_series(stats.get(), "mean_strain", H5T_IEEE_F32LE, {});
+  impl_->stage_count = info.stages.size();
+  impl_->output_stage = info.output_stage;
+  impl_->stage_seconds = make_series(stats.get(), "stage_seconds", H5T_IEEE_F64LE, {impl_->stage_count});
+  impl_->wall_seconds = make_series(stats.get(), "wall_seconds", H5T_IEEE_F64LE, {});
+  impl_->kinetic = make_series(stats.get(), "kinetic_energy", H5T_IEEE_F64LE, {});
+  ok = ok && h5::write_string_list_attribute(impl_->stage_seconds.get(), "stages", info.stages);
+
+  // /lattice/rest_positions [J, K, 3] float32
+  const hsize_t rest_dims[3] = {rows, cols, 3};
+  h5::Handle rest_space = h5::dataspace(H5Screate_simple(3, rest_dims, nullptr));
+  h5::Handle rest_props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_obj_track_times(rest_props.get(), false);
+  h5::Handle rest = h5::dataset(H5Dcreate2(lattice_group.get(), "rest_positions", H5T_IEEE_F32LE,
+                                           rest_space.get(), H5P_DEFAULT, rest_props.get(), H5P_DEFAULT));
+  std::vector<float>& buffer = impl_->position_buffer;
+  buffer.resize(lattice.node_count() * 3);
+  const std::vector<Vec3> rest_positions = lattice.rest_positions();
+  for (std::size_t i = 0; i < rest_positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) buffer[3 * i + c] = float(rest_positions[i][c]);
+  ok = ok && rest.valid() &&
+       H5Dwrite(rest.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) >= 0;
+  ok = ok && impl_->positions.valid() && H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
+  if (!ok) {
+    impl_.reset();
+    fs::remove(partial, ec);
+    throw UserError(fmt::format("{}: cannot write the output file", path_));
+  }
+}
+
+FrameWriter::~FrameWriter() = default;  // an unfinished run leaves its .partial file
+
+void FrameWriter::write_frame(double time_s, std::span<const Vec3> positions_m,
+                              const FrameStats& stats) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<float>& buffer = impl_->position_buffer;
+  for (std::size_t i = 0; i < positions_m.size(); ++i)
+    for (int c = 0; c < 3; ++c) buffer[3 * i + c] = float(positions_m[i][c]);
+  const hsize_t index = hsize_t(frames_);
+  bool ok = append_row(impl_->time.get(), index, H5T_NATIVE_DOUBLE, &time_s) &&
+            append_row(impl_->positions.get(), index, H5T_NATIVE_FLOAT, buffer.data());
+  std::vector<double> stage_row(stats.stage_seconds.begin(), stats.stage_seconds.end());
+  stage_row.resize(impl_->stage_count, 0.0);
+  const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (impl_->output_stage >= 0 && std::size_t(impl_->output_stage) < stage_row.size())
+    stage_row[std::size_t(impl_->output_stage)] += write_s;
+  const float max_strain = float(stats.max_strain), mean_strain = float(stats.mean_strain);
+  const double wall_s = stats.wall_seconds + write_s;
+  ok = ok && append_row(impl_->max_strain.get(), index, H5T_NATIVE_FLOAT, &max_strain) &&
+       append_row(impl_->mean_strain.get(), index, H5T_NATIVE_FLOAT, &mean_strain) &&
+       (impl_->stage_count == 0 ||
+        append_row(impl_->stage_seconds.get(), index, H5T_NATIVE_DOUBLE, stage_row.data())) &&
+       append_row(impl_->wall_seconds.get(), index, H5T_NATIVE_DOUBLE, &wall_s) &&
+       append_row(impl_->kinetic.get(), index, H5T_NATIVE_DOUBLE, &stats.kinetic_energy_j);
+  if (!ok) throw IoError(fmt::format("{}: writing frame {} failed (disk full?)", partial_path(), frames_));
+  ++frames_;
+  impl_->times.push_back(time_s);
+  if (frames_ % flush_every_ == 0 && H5Fflush(impl_->file.get(), H5F_SCOPE_GLOBAL) < 0)
+    throw IoError(fmt::format("{}: flushing to disk failed (disk full?)", partial_path()));
+}
+
+void FrameWriter::finish(const std::string& status, const std::string& reason) {
+  const hid_t root = impl_->file.get();
+  bool ok = h5::write_string_attribute(root, "status", status);
+  if (!reason.empty()) ok = ok && h5::write_string_attribute(root, "status_reason", reason);
+  ok = ok && H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
+  const std::vector<double> times = std::move(impl_->times);
+  impl_.reset();  // closes every dataset and the file
+  if (!ok) throw IoError(fmt::format("{}: finishing the output file failed", partial_path()));
+  std::error_code ec;
+  fs::rename(partial_path(), path_, ec);
+  if (ec) throw IoError(fmt::format("{}: cannot rename to {}: {}", partial_path(), path_, ec.message()));
+
+  fs::path sidecar(path_);
+  sidecar.replace_extension(".xdmf");
+  std::ofstream xdmf(sidecar);
+  xdmf << xdmf_text(fs::path(path_).filename().string(), lattice_, times);
+  if (!xdmf) throw IoError(fmt::format("{}: cannot write the XDMF sidecar", sidecar.string()));
+}
+
+}  // namespace flagsim::data

@@ -1,0 +1,133 @@
+#include "flagsim/data/output_reader.hpp"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "flagsim/core/errors.hpp"
+#include "flagsim/data/frame_writer.hpp"
+#include "h5_handle.hpp"
+
+namespace flagsim::data {
+
+struct OutputReader::Impl {
+  h5::Handle file;
+};
+
+namespace {
+
+// Reads a whole numeric dataset as double; empty if missing.
+std::vector<double> read_all(hid_t file, const char* path, std::vector<hsize_t>* dims_out = nullptr) {
+  if (H5Lexists(file, path, H5P_DEFAULT) <= 0) return {};
+  h5::Handle set = h5::dataset(H5Dopen2(file, path, H5P_DEFAULT));
+  h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(std::size_t(std::max(rank, 0)));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  hsize_t count = 1;
+  for (hsize_t d : dims) count *= d;
+  std::vector<double> values(count);
+  if (count > 0 && H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+    values.clear();
+  if (dims_out) *dims_out = dims;
+  return values;
+}
+
+}  // namespace
+
+OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Impl>()), path_(path) {
+  h5::silence_library_errors();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw UserError(fmt::format("{}: no such file", path));
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+    throw UserError(fmt::format("{}: not an HDF5 file (expected a flag-sim output .h5)", path));
+  impl_->file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (!impl_->file.valid())
+    throw UserError(fmt::format("{}: cannot open the HDF5 file (is it still being written?)", path));
+  std::string format;
+  if (!h5::read_string_attribute(impl_->file.get(), "format", format) || format != kFormat)
+    throw UserError(fmt::format("{}: not a flag-sim output (root attribute format is \"{}\", "
+                                "expected \"{}\")", path, format, kFormat));
+  const hid_t file = impl_->file.get();
+  if (H5Lexists(file, "/frames", H5P_DEFAULT) <= 0 ||
+      H5Lexists(file, "/frames/positions", H5P_DEFAULT) <= 0)
+    throw UserError(fmt::format("{}: flag-sim file without /frames/positions", path));
+  h5::Handle set = h5::dataset(H5Dopen2(file, "/frames/positions", H5P_DEFAULT));
+  h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
+  hsize_t dims[4] = {0, 0, 0, 0};
+  if (H5Sget_simple_extent_ndims(space.get()) != 4 ||
+      H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0 || dims[3] != 3)
+    throw UserError(fmt::format("{}: /frames/positions is not [T, J, K, 3]", path));
+  frames_ = int(dims[0]);
+  rows_ = int(dims[1]);
+  cols_ = int(dims[2]);
+}
+
+OutputReader::~OutputReader() = default;
+
+std::string OutputReader::attribute(const char* name) const {
+  std::string value;
+  h5::read_string_attribute(impl_->file.get(), name, value);
+  return value;
+}
+
+double OutputReader::number_attribute(const char* name, double fallback) const {
+  double value = fallback;
+  return h5::read_double_attribute(impl_->file.get(), name, value) ? value : fallback;
+}
+
+long long OutputReader::seed() const {
+  long long value = 0;
+  h5::read_int_attribute(impl_->file.get(), "seed", value);
+  return value;
+}
+
+std::vector<double> OutputReader::times_s() const { return read_all(impl_->file.get(), "/frames/time"); }
+
+std::vector<Vec3> OutputReader::positions(int frame) const {
+  h5::Handle set = h5::dataset(H5Dopen2(impl_->file.get(), "/frames/positions", H5P_DEFAULT));
+  h5::Handle file_space = h5::dataspace(H5Dget_space(set.get()));
+  const hsize_t start[4] = {hsize_t(frame), 0, 0, 0};
+  const hsize_t count[4] = {1, hsize_t(rows_), hsize_t(cols_), 3};
+  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+  h5::Handle memory = h5::dataspace(H5Screate_simple(4, count, nullptr));
+  std::vector<double> flat(std::size_t(rows_) * cols_ * 3);
+  if (frame < 0 || frame >= frames_ ||
+      H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT, flat.data()) < 0)
+    throw UserError(fmt::format("{}: cannot read frame {}", path_, frame));
+  std::vector<Vec3> result(flat.size() / 3);
+  for (std::size_t i = 0; i < result.size(); ++i) result[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return result;
+}
+
+std::vector<Vec3> OutputReader::rest_positions() const {
+  const std::vector<double> flat = read_all(impl_->file.get(), "/lattice/rest_positions");
+  std::vector<Vec3> result(flat.size() / 3);
+  for (std::size_t i = 0; i < result.size(); ++i) result[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return result;
+}
+
+std::vector<double> OutputReader::stat(const char* name) const {
+  return read_all(impl_->file.get(), fmt::format("/stats/{}", name).c_str());
+}
+
+std::vector<std::vector<double>> OutputReader::stage_seconds() const {
+  std::vector<hsize_t> dims;
+  const std::vector<double> flat = read_all(impl_->file.get(), "/stats/stage_seconds", &dims);
+  std::vector<std::vector<double>> rows;
+  if (dims.size() != 2 || dims[1] == 0) return rows;
+  for (hsize_t t = 0; t < dims[0]; ++t)
+    rows.emplace_back(flat.begin() + long(t * dims[1]), flat.begin() + long((t + 1) * dims[1]));
+  return rows;
+}
+
+std::vector<std::string> OutputReader::stage_names() const {
+  std::vector<std::string> names;
+  if (H5Lexists(impl_->file.get(), "/stats/stage_seconds", H5P_DEFAULT) <= 0) return names;
+  h5::Handle set = h5::dataset(H5Dopen2(impl_->file.get(), "/stats/stage_seconds", H5P_DEFAULT));
+  h5::read_string_list_attribute(set.get(), "stages", names);
+  return names;
+}
+
+}  // namespace flagsim::data

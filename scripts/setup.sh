@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs the Debian packages flag-sim needs (skipping those already present),
+# then configures and builds the project into build/. Idempotent: a second run
+# only rebuilds what changed.
+#
+# Usage: scripts/setup.sh [--no-build]
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+# Build tools and the libraries the modules link against (see CMakeLists.txt).
+packages=(
+  cmake g++ make pkg-config
+  libhdf5-dev libtomlplusplus-dev libcli11-dev libfmt-dev libeigen3-dev
+  libgtest-dev libbenchmark-dev
+  python3-h5py python3-numpy
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+if [ "${1:-}" = "--no-build" ]; then exit 0; fi
+
+jobs="$(nproc 2>/dev/null || echo 2)"
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" \
+  -DFLAGSIM_WERROR="${FLAGSIM_WERROR:-OFF}" >/dev/null
+cmake --build "$root/build" -j "$jobs"

@@ -1,0 +1,134 @@
+// Bad scenes and bad command lines, end to end through build/flag-sim: each
+// gets exit code 2, exactly one `error:` line on stderr naming the place and
+// the fix, nothing on stdout, and no output file left behind.
+#include <gtest/gtest.h>
+
+#include "process.hpp"
+#include "temp_dir.hpp"
+
+namespace flagsim::test {
+namespace {
+
+// A valid small scene; cases append to it or replace it.
+constexpr const char* kBase = R"([scene]
+mode = "mass-spring"
+duration = 0.1
+[flag]
+size = [1.5, 1.0]
+fine = [9, 13]
+)";
+
+struct BadInput {
+  const char* name;
+  std::string scene;              ///< written to scene.toml; empty: no scene file
+  std::vector<std::string> args;  ///< "SCENE" is replaced by the scene's path
+  std::string message;            ///< must appear in the error line
+};
+
+// Names the case in gtest's output instead of dumping its bytes.
+void PrintTo(const BadInput& input, std::ostream* out) { *out << input.name; }
+
+std::string with(const std::string& extra) { return std::string(kBase) + extra; }
+
+const std::vector<BadInput>& cases() {
+  static const std::vector<BadInput> list = {
+      {"broken_toml", "[flag\nsize = [1, 2]\n", {"run", "SCENE"}, "scene.toml:1:6: invalid TOML"},
+      {"misspelt_key", with("stretch_modulous = 1e4\n"), {"run", "SCENE"},
+       "scene.toml:7:1: unknown key 'flag.stretch_modulous' (did you mean 'flag.stretch_modulus'?)"},
+      {"misspelt_table", with("[wnid]\nvelocity = [1, 0, 0]\n"), {"run", "SCENE"},
+       "unknown key 'wnid' (did you mean 'wind'?)"},
+      {"key_in_wrong_table", std::string("seed = 3\n") + kBase, {"run", "SCENE"},
+       "unknown key 'seed' (did you mean 'scene.seed'?)"},
+      {"wrong_type", std::string(kBase).replace(std::string(kBase).find("[9, 13]"), 7, "\"9x13\""),
+       {"run", "SCENE"}, "scene.toml:6:8: flag.fine: expected [J, K] nodes, two integers"},
+      {"negative_density", with("areal_density = -0.2\n"), {"run", "SCENE"},
+       "flag.areal_density: expected a number in (0, 10000] kg/m^2, got -0.2"},
+      {"nan_modulus", with("stretch_modulus = nan\n"), {"run", "SCENE"},
+       "flag.stretch_modulus: expected a number in (0, 1e+12] N/m, got nan"},
+      {"infinite_duration", std::string(kBase).replace(std::string(kBase).find("0.1"), 3, "inf"),
+       {"run", "SCENE"}, "scene.duration: expected a number > 0 s, got inf"},
+      {"zero_fps", with("").insert(std::string(kBase).find("[flag]"), "fps = 0\n"), {"run", "SCENE"},
+       "scene.fps: expected a number in (0, 10000] frames per second, got 0"},
+      {"lattice_1x1", std::string(kBase).replace(std::string(kBase).find("[9, 13]"), 7, "[1, 1]"),
+       {"run", "SCENE"}, "flag.fine: expected [J, K] nodes, two integers in [2, 8193]"},
+      {"lattice_absurd", std::string(kBase).replace(std::string(kBase).find("[9, 13]"), 7, "[1000000, 1000000]"),
+       {"run", "SCENE"}, "two integers in [2, 8193], got [ 1000000, 1000000 ]"},
+      {"too_many_nodes", std::string(kBase).replace(std::string(kBase).find("[9, 13]"), 7, "[8193, 8193]"),
+       {"run", "SCENE"}, "flag.fine: 8193 x 8193 = 67125249 nodes is more than"},
+      {"coarse_not_dividing", with("coarse = [4, 13]\n"), {"run", "SCENE"},
+       "flag.coarse: [4, 13] does not divide flag.fine = [9, 13]: 9 - 1 = 8 is not a multiple of 4 - 1; "
+       "coarse rows that work: 2, 3, 5, 9"},
+      {"mode_typo", std::string(kBase).replace(std::string(kBase).find("\"mass-spring\""), 13, "\"mass_spring\""),
+       {"run", "SCENE"}, "scene.mode: expected one of \"hybrid\", \"mass-spring\", \"bullet\", \"infill\", "
+       "got \"mass_spring\" (did you mean \"mass-spring\"?)"},
+      {"bad_pin", with("pin = \"middle\"\n"), {"run", "SCENE"}, "flag.pin: expected one of"},
+      {"pole_without_pins", with("pin = \"none\"\n[pole]\nmotion = \"sine\"\n"), {"run", "SCENE"},
+       "pole: a moving pole needs pinned nodes"},
+      {"wind_two_components", with("[wind]\nvelocity = [10, 0]\n"), {"run", "SCENE"},
+       "wind.velocity: expected an array of 3 finite numbers"},
+      {"keyframes_out_of_order",
+       with("[[keyframe]]\ntime = 1.0\ncorners = [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]\n"
+            "[[keyframe]]\ntime = 0.5\ncorners = [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]\n"),
+       {"run", "SCENE"}, "keyframe.time: keyframes must be in increasing time; 0.5 s follows 1 s"},
+      {"unbuilt_wrinkles", with("[wrinkles]\nfiber_radius = 0.001\n"), {"run", "SCENE"},
+       "wrinkles: the wrinkle step (paper 3.5) is not available in this version"},
+      {"unbuilt_mode", kBase, {"run", "SCENE", "--mode", "hybrid"},
+       "mode \"hybrid\" is not available in this version of flag-sim (available: \"mass-spring\")"},
+      {"negative_limit", with("[limits]\nmax_strain = -1\n"), {"run", "SCENE"},
+       "limits.max_strain: expected a number > 0"},
+      {"unknown_flag", kBase, {"run", "SCENE", "--bogus"}, "--bogus"},
+      {"set_without_value", kBase, {"run", "SCENE", "--set", "flag.fine"},
+       "--set flag.fine: expected KEY=VALUE"},
+      {"set_out_of_range", kBase, {"run", "SCENE", "--set", "flag.fine=[0,3]"},
+       "--set flag.fine=[0,3]: flag.fine: expected [J, K] nodes"},
+      {"set_unknown_key", kBase, {"run", "SCENE", "--set", "flag.colour=1"},
+       "unknown key 'flag.colour'"},
+      {"negative_seed", kBase, {"run", "SCENE", "--seed", "-1"}, "scene.seed: expected an integer in [0,"},
+      {"zero_frames", kBase, {"run", "SCENE", "--frames", "0"}, "--frames 0: expected at least 1 frame"},
+      {"missing_scene_file", "", {"run", "nowhere.toml"}, "nowhere.toml: cannot open scene file"},
+      {"render_unavailable", kBase, {"run", "SCENE", "--render", "movie.mp4"},
+       "--render: rendering is not available"},
+      {"output_under_a_file", kBase, {"run", "SCENE", "-o", "scene.toml/run.h5"},
+       "scene.toml/run.h5: cannot create the output file"},
+      {"info_missing_file", "", {"info", "nothing.h5"}, "nothing.h5: no such file"},
+      {"info_not_hdf5", kBase, {"info", "SCENE"}, "scene.toml: not an HDF5 file"},
+      {"validate_bad_scene", with("damping = \"lots\"\n"), {"validate", "SCENE"},
+       "flag.damping: expected a number in [0, 1e+06] 1/s, got \"lots\""},
+      {"compare_unavailable", "", {"compare"}, "'compare' is not available in this version"},
+      {"no_subcommand", "", {}, "subcommand"},
+  };
+  return list;
+}
+
+class BadInputTest : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(BadInputTest, ExitTwoOneErrorLineNoOutputFile) {
+  const BadInput& input = GetParam();
+  TempDir dir;
+  std::vector<std::string> args;
+  if (!input.scene.empty()) dir.write("scene.toml", input.scene);
+  for (const std::string& a : input.args) args.push_back(a == "SCENE" ? "scene.toml" : a);
+  if (!args.empty() && args[0] == "run") {
+    args.push_back("--quiet");
+    if (std::find(args.begin(), args.end(), "-o") == args.end()) {
+      args.push_back("-o");
+      args.push_back("run.h5");
+    }
+  }
+  const ProcessResult result = run_flag_sim(args, dir.path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_TRUE(result.out.empty()) << result.out;
+  ASSERT_TRUE(result.err.starts_with("error: ")) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_NE(result.err.find(input.message), std::string::npos)
+      << "expected: " << input.message << "\n     got: " << result.err;
+  EXPECT_EQ(dir.entry_count(), input.scene.empty() ? 0 : 1) << "an output file was left behind";
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, BadInputTest, ::testing::ValuesIn(cases()),
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
+
+TEST(BadInput, AtLeastTwentyCases) { EXPECT_GE(cases().size(), 20u); }
+
+}  // namespace
+}  // namespace flagsim::test

@@ -1,0 +1,151 @@
+// `flag-sim run`, `validate`, `info` and `scene` end to end.
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "flagsim/data/output_reader.hpp"
+#include "process.hpp"
+#include "temp_dir.hpp"
+
+namespace flagsim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kWindy = R"([scene]
+name = "windy"
+mode = "mass-spring"
+fps = 30
+duration = 0.2
+seed = 3
+[flag]
+size = [1.5, 1.0]
+fine = [9, 13]
+initial_perturbation = 0.01
+[gravity]
+acceleration = [0, -9.81, 0]
+[wind]
+velocity = [10, 0, 0]
+[output]
+flush_every = 2
+)";
+
+std::vector<float> all_positions(const std::string& path) {
+  const data::OutputReader reader(path);
+  std::vector<float> values;
+  for (int t = 0; t < reader.frame_count(); ++t)
+    for (const Vec3& p : reader.positions(t))
+      for (int c = 0; c < 3; ++c) values.push_back(float(p[c]));
+  return values;
+}
+
+TEST(Run, DefaultSceneWritesTheContractFile) {
+  TempDir dir;
+  const ProcessResult result = run_flag_sim({"run", "--frames", "3", "--quiet"}, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(result.err.empty()) << result.err;
+  EXPECT_NE(result.out.find("complete: 3 frames"), std::string::npos) << result.out;
+  const std::string path = dir.file("out/default.h5");  // output.file of the default scene
+  ASSERT_TRUE(fs::exists(path));
+  EXPECT_TRUE(fs::exists(dir.file("out/default.xdmf")));
+  const data::OutputReader reader(path);
+  EXPECT_EQ(reader.attribute("status"), "complete");
+  EXPECT_EQ(reader.attribute("mode"), "mass-spring");
+  EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,wind,damping");
+  EXPECT_EQ(reader.frame_count(), 3);
+  EXPECT_EQ(reader.seed(), 1);
+  EXPECT_NE(reader.attribute("scene").find("frames = 3"), std::string::npos);
+  EXPECT_GT(reader.number_attribute("substeps_per_frame", 0), 1);
+}
+
+TEST(Run, SameSceneAndSeedGiveIdenticalPositions) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  for (const char* out : {"a.h5", "b.h5"})
+    ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", out, "--quiet"}, dir.path()).exit_code, 0);
+  ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", "c.h5", "--seed", "4", "--quiet"}, dir.path()).exit_code, 0);
+  const auto a = all_positions(dir.file("a.h5")), b = all_positions(dir.file("b.h5")),
+             c = all_positions(dir.file("c.h5"));
+  ASSERT_EQ(a.size(), 7u * 9 * 13 * 3);
+  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float)));
+  EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(float)));  // the seed matters
+}
+
+TEST(Run, SetOverridesAreRecordedInTheFile) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  const ProcessResult result = run_flag_sim(
+      {"run", "windy.toml", "-o", "r.h5", "--set", "flag.fine=[5,7]", "--set", "wind.velocity=[4,0,0]", "--quiet"},
+      dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const data::OutputReader reader(dir.file("r.h5"));
+  EXPECT_EQ(reader.rows(), 5);
+  EXPECT_EQ(reader.cols(), 7);
+  EXPECT_NE(reader.attribute("scene").find("velocity = [ 4, 0, 0 ]"), std::string::npos)
+      << reader.attribute("scene");
+}
+
+TEST(Run, DivergedRunKeepsItsGoodFramesAndExitsThree) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  // 0.1% strain is exceeded once gravity and wind have stretched the cloth.
+  const ProcessResult result = run_flag_sim(
+      {"run", "windy.toml", "-o", "d.h5", "--set", "limits.max_strain=0.001", "--set",
+       "scene.duration=2", "--quiet"}, dir.path());
+  EXPECT_EQ(result.exit_code, 3) << result.err;
+  EXPECT_TRUE(result.err.starts_with("error: simulation diverged at t = ")) << result.err;
+  EXPECT_NE(result.err.find("limits.max_strain"), std::string::npos);
+  const data::OutputReader reader(dir.file("d.h5"));
+  EXPECT_EQ(reader.attribute("status"), "diverged");
+  EXPECT_NE(reader.attribute("status_reason").find("max link strain"), std::string::npos);
+  ASSERT_GE(reader.frame_count(), 1);
+  EXPECT_LT(reader.frame_count(), 61);
+  for (double strain : reader.stat("max_strain")) EXPECT_LE(strain, 0.001);  // only good frames
+}
+
+TEST(Run, OutputEveryKeepsEveryNthFrame) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", "e.h5", "--set", "output.every=3", "--quiet"},
+                         dir.path()).exit_code, 0);
+  const data::OutputReader reader(dir.file("e.h5"));
+  EXPECT_EQ(reader.times_s(), (std::vector<double>{0.0, 0.1, 0.2}));
+}
+
+TEST(Validate, PrintsWhatWouldRun) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  const ProcessResult result = run_flag_sim({"validate", "windy.toml"}, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("ok: windy.toml: scene \"windy\", mode mass-spring, 9 x 13 nodes"),
+            std::string::npos) << result.out;
+  EXPECT_EQ(dir.entry_count(), 1);  // validate writes nothing
+}
+
+TEST(SceneCommand, DefaultSceneRoundTrips) {
+  TempDir dir;
+  const ProcessResult printed = run_flag_sim({"scene", "--default"});
+  ASSERT_EQ(printed.exit_code, 0);
+  std::ifstream file(std::string(FLAGSIM_SOURCE_DIR) + "/scenes/default.toml");
+  const std::string source((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(printed.out, source);
+  dir.write("d.toml", printed.out);
+  EXPECT_EQ(run_flag_sim({"validate", "d.toml"}, dir.path()).exit_code, 0);
+}
+
+TEST(Info, SummarisesARun) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", "i.h5", "--quiet"}, dir.path()).exit_code, 0);
+  const ProcessResult result = run_flag_sim({"info", "i.h5"}, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  for (const char* line : {"status    complete", "mode      mass-spring", "lattice   9 x 13 (117 nodes)",
+                           "frames    7, t = 0 .. 0.2 s", "effects   stretch,gravity,wind", "seed      3",
+                           "ms/frame (stretch "})
+    EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
+}
+
+}  // namespace
+}  // namespace flagsim::test

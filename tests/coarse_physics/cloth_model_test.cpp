@@ -1,0 +1,62 @@
+#include "flagsim/coarse_physics/cloth_model.hpp"
+
+#include <numeric>
+
+#include <gtest/gtest.h>
+
+#include "flagsim/coarse_physics/stretch_springs.hpp"
+#include "scene_fixtures.hpp"
+
+namespace flagsim::physics {
+namespace {
+
+TEST(ClothModel, MassIsDensityTimesAreaAtAnyResolution) {
+  for (auto [rows, cols] : {std::pair{2, 2}, {5, 7}, {33, 49}}) {
+    const ClothModel model = make_cloth_model(test::small_cloth(rows, cols));
+    const double total = std::accumulate(model.mass_kg.begin(), model.mass_kg.end(), 0.0);
+    EXPECT_NEAR(total, 0.2 * 1.0 * 0.8, 1e-12) << rows << "x" << cols;
+  }
+}
+
+TEST(ClothModel, UniaxialStretchStoresTheContinuumEnergy) {
+  // No shear springs: stretching by eps along x stores 1/2 Y eps^2 w h exactly.
+  for (auto [rows, cols] : {std::pair{3, 4}, {9, 25}}) {
+    Scene scene = test::small_cloth(rows, cols);
+    scene.flag.shear_modulus_n_m = 0.0;
+    const ClothModel model = make_cloth_model(scene);
+    std::vector<Vec3> x = model.lattice.rest_positions();
+    const double eps = 0.01;
+    for (Vec3& p : x) p.x() *= 1.0 + eps;
+    const double expected = 0.5 * scene.flag.stretch_modulus_n_m * eps * eps * 1.0 * 0.8;
+    EXPECT_NEAR(StretchSprings(model).energy(x), expected, 1e-12 * expected + 1e-15);
+  }
+}
+
+TEST(ClothModel, SimpleShearStoresTheShearModulusEnergy) {
+  // u_x = gamma * y: only the diagonals change length to first order.
+  Scene scene = test::small_cloth(9, 13);
+  const ClothModel model = make_cloth_model(scene);
+  std::vector<Vec3> x = model.lattice.rest_positions();
+  const double gamma = 1e-3;
+  for (Vec3& p : x) p.x() += gamma * p.y();
+  const double expected = 0.5 * scene.flag.shear_modulus_n_m * gamma * gamma * 1.0 * 0.8;
+  EXPECT_NEAR(StretchSprings(model).energy(x), expected, 0.01 * expected);
+}
+
+TEST(ClothModel, PinSets) {
+  const Lattice lattice = Lattice::rectangle(3, 4, 1, 1, Vec3::Zero());
+  auto count = [&](PinSet pin) {
+    const auto pinned = pinned_nodes(lattice, pin);
+    return std::accumulate(pinned.begin(), pinned.end(), 0);
+  };
+  EXPECT_EQ(count(PinSet::kLeft), 3);
+  EXPECT_EQ(count(PinSet::kRight), 3);
+  EXPECT_EQ(count(PinSet::kTop), 4);
+  EXPECT_EQ(count(PinSet::kCorners), 4);
+  EXPECT_EQ(count(PinSet::kNone), 0);
+  EXPECT_EQ(pinned_nodes(lattice, PinSet::kLeft)[lattice.index(2, 0)], 1);
+  EXPECT_EQ(pinned_nodes(lattice, PinSet::kRight)[lattice.index(1, 3)], 1);
+}
+
+}  // namespace
+}  // namespace flagsim::physics

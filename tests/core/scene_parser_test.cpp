@@ -1,0 +1,106 @@
+#include "flagsim/core/scene_parser.hpp"
+
+#include <gtest/gtest.h>
+
+#include "flagsim/core/errors.hpp"
+
+namespace flagsim {
+namespace {
+
+// The message of the UserError that parsing `text` throws ("" if none).
+std::string error_of(const std::string& text, std::vector<std::string> overrides = {}) {
+  try {
+    parse_scene(text, "s.toml", overrides);
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+constexpr const char* kMinimal = R"(
+[scene]
+mode = "mass-spring"
+[flag]
+size = [1.5, 1.0]
+fine = [9, 13]
+)";
+
+TEST(SceneParser, DefaultSceneIsValidAndMeansWhatItSays) {
+  const Scene scene = parse_scene(default_scene_toml(), kDefaultSceneName);
+  EXPECT_EQ(scene.name, "default");
+  EXPECT_EQ(scene.mode, Mode::kMassSpring);
+  EXPECT_DOUBLE_EQ(scene.flag.width_m, 1.5);
+  EXPECT_DOUBLE_EQ(scene.flag.height_m, 1.0);
+  EXPECT_EQ(scene.flag.pin, PinSet::kLeft);
+  ASSERT_TRUE(scene.wind && scene.gravity);
+  EXPECT_DOUBLE_EQ(scene.wind->velocity_m_s.x(), 10.0);
+  ASSERT_TRUE(scene.flag.coarse.has_value());
+  EXPECT_EQ(scene.output.file, "out/default.h5");
+  // Contract: a 1.5 m flag in 10 m/s wind pulls ~90 N/m; the default cloth
+  // must stretch under 1% at that load.
+  EXPECT_GE(scene.flag.stretch_modulus_n_m, 1.0e4);
+}
+
+TEST(SceneParser, DefaultsAndOptionalEffects) {
+  const Scene scene = parse_scene(kMinimal, "s.toml");
+  EXPECT_EQ(scene.name, "s");  // file stem
+  EXPECT_FALSE(scene.wind.has_value());
+  EXPECT_FALSE(scene.gravity.has_value());
+  EXPECT_FALSE(scene.bending.has_value());
+  EXPECT_EQ(scene.simulated_frames(), 301);  // 10 s at 30 fps, plus t = 0
+}
+
+TEST(SceneParser, ZeroGravityIsNoGravity) {
+  const Scene scene = parse_scene(std::string(kMinimal) + "[gravity]\nacceleration = [0, 0, 0]\n", "s.toml");
+  EXPECT_FALSE(scene.gravity.has_value());
+}
+
+TEST(SceneParser, OverridesAreCheckedLikeTheFile) {
+  const std::vector<std::string> sets = {"flag.fine=[17, 25]", "wind.velocity=[5,0,0]",
+                                         "scene.name=windy"};
+  const Scene scene = parse_scene(kMinimal, "s.toml", sets);
+  EXPECT_EQ(scene.flag.fine_rows, 17);
+  EXPECT_EQ(scene.flag.fine_cols, 25);
+  ASSERT_TRUE(scene.wind.has_value());  // --set can add an effect table
+  EXPECT_EQ(scene.name, "windy");       // a bare word is taken as a string
+  EXPECT_NE(scene.toml_text.find("fine = [ 17, 25 ]"), std::string::npos) << scene.toml_text;
+  EXPECT_EQ(error_of(kMinimal, {"flag.fine=[1, 25]"}),
+            "--set flag.fine=[1, 25]: flag.fine: expected [J, K] nodes, two integers in [2, 8193], "
+            "got [ 1, 25 ]");
+  EXPECT_NE(error_of(kMinimal, {"flag.fine"}).find("expected KEY=VALUE"), std::string::npos);
+}
+
+TEST(SceneParser, FramesKeyFixesTheDuration) {
+  const Scene scene = parse_scene(kMinimal, "s.toml", std::vector<std::string>{"scene.frames=7"});
+  EXPECT_EQ(scene.simulated_frames(), 7);
+}
+
+TEST(SceneParser, ErrorsNameFileLineColumnAndKey) {
+  EXPECT_EQ(error_of(std::string(kMinimal) + "[wind]\nvelocity = [10, 0]\n"),
+            "s.toml:8:12: wind.velocity: expected an array of 3 finite numbers [x, y, z] in m/s, "
+            "got [ 10, 0 ]");
+  EXPECT_EQ(error_of(std::string(kMinimal) + "areal_densty = 0.2\n"),
+            "s.toml:7:1: unknown key 'flag.areal_densty' (did you mean 'flag.areal_density'?)");
+}
+
+TEST(SceneParser, CoarseMustDivideFineAndSaysWhatWould) {
+  const std::string message = error_of(std::string(kMinimal) + "coarse = [4, 5]\n");
+  EXPECT_NE(message.find("s.toml:7:10: flag.coarse"), std::string::npos) << message;
+  EXPECT_NE(message.find("coarse rows that work: 2, 3, 5, 9"), std::string::npos) << message;
+}
+
+TEST(SceneParser, UnbuiltFeaturesAreRejectedNotIgnored) {
+  EXPECT_NE(error_of(std::string(kMinimal) + "[wrinkles]\nfiber_radius = 0.001\n")
+                .find("wrinkles: the wrinkle step (paper 3.5) is not available"),
+            std::string::npos);
+  EXPECT_NE(error_of(kMinimal, {"scene.mode=bullet"}).find("mode \"bullet\" is not available"),
+            std::string::npos);
+}
+
+TEST(SceneParser, KeyInTheWrongTableIsPointedToItsHome) {
+  EXPECT_NE(error_of(std::string("pin = \"left\"\n") + kMinimal).find("did you mean 'flag.pin'?"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace flagsim

@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""The output file as h5py (Debian's /usr/bin/python3) sees it: every contract
+path with its dtype and shape, the attributes, and a foreign HDF5 file refused."""
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+flag_sim = sys.argv[1]
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    out = os.path.join(tmp, "run.h5")
+    run = subprocess.run([flag_sim, "run", "--frames", "5", "--set", "flag.fine=[9,13]", "-o", out,
+                          "--quiet"], capture_output=True, text=True)
+    check(run.returncode == 0, f"run failed: {run.stderr}")
+    with h5py.File(out, "r") as f:
+        attrs = f.attrs
+        check(attrs["format"] == "flag-sim/1", "format")
+        check(attrs["status"] == "complete", "status")
+        check(attrs["mode"] == "mass-spring", "mode")
+        check(attrs["effects"] == "stretch,gravity,wind,damping", f"effects {attrs['effects']}")
+        check("[flag]" in attrs["scene"] and "fine = [ 9, 13 ]" in attrs["scene"], "scene text")
+        check(int(attrs["seed"]) == 1, "seed")
+        check(isinstance(attrs["version"], str), "version")
+        T, J, K = 5, 9, 13
+        expect = {
+            "frames/time": (np.float64, (T,)),
+            "frames/positions": (np.float32, (T, J, K, 3)),
+            "lattice/rest_positions": (np.float32, (J, K, 3)),
+            "stats/max_strain": (np.float32, (T,)),
+            "stats/mean_strain": (np.float32, (T,)),
+            "stats/wall_seconds": (np.float64, (T,)),
+        }
+        for path, (dtype, shape) in expect.items():
+            check(path in f, f"missing {path}")
+            if path in f:
+                check(f[path].dtype == dtype, f"{path} dtype {f[path].dtype}")
+                check(f[path].shape == shape, f"{path} shape {f[path].shape}")
+        stages = list(f["stats/stage_seconds"].attrs["stages"])
+        check(stages == ["stretch", "gravity", "wind", "integrate", "checks", "output"], f"stages {stages}")
+        check(f["stats/stage_seconds"].shape == (T, len(stages)), "stage_seconds shape")
+        rest = f["lattice/rest_positions"][...]
+        check(np.allclose(rest[0, 0], [0, 2, 0]) and np.allclose(rest[J - 1, K - 1], [1.5, 1.0, 0]),
+              "rest positions follow the contract")
+        check(np.allclose(np.diff(f["frames/time"][...]), 1 / 30), "frame times")
+        check(np.all(np.isfinite(f["frames/positions"][...])), "finite positions")
+        check(np.array_equal(f["frames/positions"][0, :, 0], rest[:, 0]), "pole edge pinned at rest")
+    check(os.path.exists(os.path.join(tmp, "run.xdmf")), "xdmf sidecar")
+
+    foreign = os.path.join(tmp, "foreign.h5")
+    with h5py.File(foreign, "w") as f:
+        f["data"] = np.zeros(3)
+    info = subprocess.run([flag_sim, "info", foreign], capture_output=True, text=True)
+    check(info.returncode == 2, f"foreign file exit {info.returncode}")
+    check(info.stderr.startswith("error: ") and "not a flag-sim output" in info.stderr,
+          f"foreign message: {info.stderr}")
+
+for failure in failures:
+    print("FAILED:", failure)
+print(f"{0 if failures else 1} passed, {1 if failures else 0} failed")
+sys.exit(1 if failures else 0)
