@@ -33,6 +33,13 @@ std::vector<double> read_all(hid_t file, const char* path, std::vector<hsize_t>*
   return values;
 }
 
+std::vector<Vec3> to_vec3(const std::vector<double>& flat) {
+  std::vector<Vec3> result(flat.size() / 3);
+  for (std::size_t i = 0; i < result.size(); ++i)
+    result[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return result;
+}
+
 }  // namespace
 
 OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Impl>()), path_(path) {
@@ -96,16 +103,11 @@ std::vector<Vec3> OutputReader::positions(int frame) const {
   if (frame < 0 || frame >= frames_ ||
       H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT, flat.data()) < 0)
     throw UserError(fmt::format("{}: cannot read frame {}", path_, frame));
-  std::vector<Vec3> result(flat.size() / 3);
-  for (std::size_t i = 0; i < result.size(); ++i) result[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
-  return result;
+  return to_vec3(flat);
 }
 
 std::vector<Vec3> OutputReader::rest_positions() const {
-  const std::vector<double> flat = read_all(impl_->file.get(), "/lattice/rest_positions");
-  std::vector<Vec3> result(flat.size() / 3);
-  for (std::size_t i = 0; i < result.size(); ++i) result[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
-  return result;
+  return to_vec3(read_all(impl_->file.get(), "/lattice/rest_positions"));
 }
 
 std::vector<double> OutputReader::stat(const char* name) const {
