@@ -1,0 +1,59 @@
+// Cost of the infill (steps 3.1-3.4) from a 9 x 13 coarse lattice, on fine
+// lattices 33x49 to 513x769, for a frame of a cloth being rolled onto a
+// cylinder (a length-keeping motion, so the 1% strain bound can hold).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "flagsim/infill/infill_solver.hpp"
+
+namespace {
+
+using flagsim::Lattice;
+using flagsim::Vec3;
+using flagsim::infill::CellGrid;
+using flagsim::infill::InfillSolver;
+
+Vec3 rolled(const Vec3& rest, double kappa) {
+  return Vec3(std::sin(kappa * rest.x()) / kappa, rest.y(), (1.0 - std::cos(kappa * rest.x())) / kappa);
+}
+
+void BM_InfillFrame(benchmark::State& bench) {
+  const Lattice lattice = Lattice::rectangle(int(bench.range(0)), int(bench.range(1)), 1.5, 1.0, Vec3::Zero());
+  const CellGrid grid = CellGrid::of(lattice, 9, 13);
+  InfillSolver solver(lattice, grid, 100);
+  const std::vector<Vec3> rest = lattice.rest_positions();
+  std::vector<Vec3> dense = rest, coarse(grid.coarse_count());
+  auto coarse_at = [&](double kappa) {
+    for (int jc = 0; jc < grid.coarse_rows; ++jc)
+      for (int kc = 0; kc < grid.coarse_cols; ++kc)
+        coarse[grid.coarse_index(jc, kc)] = rolled(rest[grid.dense_index(lattice, jc, kc)], kappa);
+  };
+  // Warm up: roll to kappa = 1 / m in 20 frames, then time one more frame each iteration
+  // (alternating between two curvatures, so every frame has work to do).
+  for (int f = 1; f <= 20; ++f) {
+    coarse_at(0.05 * f);
+    solver.fill(coarse, dense, nullptr);
+  }
+  int frame = 0;
+  int sweeps = 0;
+  for (auto _ : bench) {
+    coarse_at(frame++ % 2 == 0 ? 1.05 : 1.0);
+    solver.fill(coarse, dense, nullptr);
+    sweeps += solver.last_relax_sweeps();
+    benchmark::DoNotOptimize(dense.data());
+  }
+  bench.counters["ns_per_node"] = benchmark::Counter(
+      double(lattice.node_count()) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  bench.counters["relax_sweeps"] = double(sweeps) / double(bench.iterations());
+}
+
+}  // namespace
+
+BENCHMARK(BM_InfillFrame)
+    ->Args({33, 49})->Args({65, 97})->Args({129, 193})->Args({257, 385})->Args({513, 769})
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,29 @@
+#pragma once
+// The coarse lattice inside the dense one (contract: flag.coarse): coarse node
+// (jc, kc) is dense node (jc * row_stride, kc * col_stride). The coarse nodes
+// split the dense lattice into (Jc-1) x (Kc-1) cells; neighbouring cells share
+// the dense nodes of their common edge.
+#include <cstddef>
+
+#include "flagsim/core/lattice.hpp"
+
+namespace flagsim::infill {
+
+struct CellGrid {
+  int coarse_rows = 2;  ///< Jc
+  int coarse_cols = 2;  ///< Kc
+  int row_stride = 1;   ///< (J-1)/(Jc-1): dense rows per cell
+  int col_stride = 1;   ///< (K-1)/(Kc-1): dense columns per cell
+
+  /// Precondition (checked by the scene): (J-1) and (K-1) are multiples of (Jc-1), (Kc-1).
+  static CellGrid of(const Lattice& fine, int coarse_rows, int coarse_cols);
+
+  std::size_t coarse_count() const { return std::size_t(coarse_rows) * coarse_cols; }
+  std::size_t coarse_index(int jc, int kc) const { return std::size_t(jc) * coarse_cols + kc; }
+  /// Dense index of coarse node (jc, kc) in `fine`.
+  std::size_t dense_index(const Lattice& fine, int jc, int kc) const {
+    return fine.index(jc * row_stride, kc * col_stride);
+  }
+};
+
+}  // namespace flagsim::infill

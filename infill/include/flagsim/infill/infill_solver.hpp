@@ -1,0 +1,75 @@
+#pragma once
+// The paper's infill (section 3): from the new positions of the coarse nodes
+// and the previous dense lattice, the new dense lattice.
+//
+// One deformation step runs, in order:
+//  3.1 boundary: every cell edge (the dense nodes between two neighbouring
+//      coarse nodes) is a fiber whose ends are given; it gets the fiber
+//      treatment of 3.2-3.4 on its own (interpretation: the paper gives the
+//      edges directly; with only coarse nodes given, each edge is a fiber like
+//      any other). Edges shared by two cells are computed once, so the dense
+//      lattice is seamless.
+//  3.2 initial move of each cell's interior: the motions of a node's row ends
+//      and column ends (on the cell's edges), interpolated and weighted by
+//      end_weight(), averaged.
+//  3.3 length search on every row, then every column, of every cell.
+//  3.4 relaxation of the whole lattice with the coarse nodes held.
+// Big motions are cut (3.1): if a coarse node moves more than kMaxStepFraction
+// of the smaller cell side, the motion is split into equal deformation steps,
+// each run in full. The state carried between frames is the dense lattice
+// itself: every fill starts from the previous one, which is what lets a shape
+// persist (property 2). Work buffers are kept: fill() does not allocate.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/stage_times.hpp"
+#include "flagsim/infill/cell_grid.hpp"
+#include "flagsim/infill/fiber.hpp"
+
+namespace flagsim::infill {
+
+/// Largest coarse-node motion per deformation step, as a fraction of the smaller cell side.
+inline constexpr double kMaxStepFraction = 0.25;
+/// 3.3 runs on a fiber whose length is off its rest length by more than this (relative).
+inline constexpr double kLengthTolerance = 0.005;
+/// 3.4 stops once every link is within this of its rest length (relative):
+/// a tenth of the 1% strain the issue bounds.
+inline constexpr double kRelaxTolerance = 0.001;
+
+class InfillSolver {
+ public:
+  /// @param relax_sweeps  most passes of 3.4 per deformation step ([infill] relax_iterations)
+  InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps);
+
+  /// Registers the timing columns "infill_3.1" ... "infill_3.4".
+  void register_stages(StageTimes& times);
+
+  /// @param coarse_m     new coarse node positions [Jc*Kc], m
+  /// @param positions_m  in: the previous dense lattice [J*K]; out: the new one
+  void fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m, StageTimes* times);
+
+  int last_deformation_steps() const { return last_steps_; }
+  int last_relax_sweeps() const { return last_sweeps_; }
+  const CellGrid& grid() const { return grid_; }
+
+ private:
+  void deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m, StageTimes* times);
+  void initial_move_interior(std::span<Vec3> positions_m) const;
+
+  Lattice lattice_;
+  CellGrid grid_;
+  int relax_sweeps_;
+  std::vector<Fiber> edges_;        ///< every cell edge, once
+  std::vector<Fiber> cell_rows_;    ///< interior rows of every cell, ends on the cell's side edges
+  std::vector<Fiber> cell_cols_;    ///< interior columns of every cell
+  std::vector<std::uint8_t> held_;  ///< coarse nodes
+  std::vector<std::size_t> coarse_dense_;  ///< dense index of each coarse node
+  std::vector<Vec3> previous_;      ///< the lattice before the current deformation step
+  std::vector<Vec3> coarse_start_, coarse_step_;
+  int stage_[4] = {-1, -1, -1, -1};
+  int last_steps_ = 0, last_sweeps_ = 0;
+};
+
+}  // namespace flagsim::infill

@@ -1,0 +1,119 @@
+#include "flagsim/infill/infill_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "flagsim/infill/relax.hpp"
+#include "flagsim/infill/steps.hpp"
+
+namespace flagsim::infill {
+
+InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps)
+    : lattice_(fine), grid_(grid), relax_sweeps_(relax_sweeps) {
+  const int rs = grid.row_stride, cs = grid.col_stride, cols = fine.cols;
+  held_.assign(fine.node_count(), 0);
+  for (int jc = 0; jc < grid.coarse_rows; ++jc) {
+    for (int kc = 0; kc < grid.coarse_cols; ++kc) {
+      const std::size_t n = grid.dense_index(fine, jc, kc);
+      coarse_dense_.push_back(n);
+      held_[n] = 1;
+      if (kc + 1 < grid.coarse_cols && cs > 1) edges_.push_back({n, 1, cs, fine.spacing_x_m});
+      if (jc + 1 < grid.coarse_rows && rs > 1) edges_.push_back({n, cols, rs, fine.spacing_y_m});
+    }
+  }
+  for (int jc = 0; jc + 1 < grid.coarse_rows; ++jc) {
+    for (int kc = 0; kc + 1 < grid.coarse_cols; ++kc) {
+      const int j0 = jc * rs, k0 = kc * cs;
+      if (cs > 1)
+        for (int j = j0 + 1; j < j0 + rs; ++j) cell_rows_.push_back({fine.index(j, k0), 1, cs, fine.spacing_x_m});
+      if (rs > 1)
+        for (int k = k0 + 1; k < k0 + cs; ++k) cell_cols_.push_back({fine.index(j0, k), cols, rs, fine.spacing_y_m});
+    }
+  }
+  previous_.resize(fine.node_count());
+  coarse_start_.resize(coarse_dense_.size());
+  coarse_step_.resize(coarse_dense_.size());
+}
+
+void InfillSolver::register_stages(StageTimes& times) {
+  stage_[0] = times.add("infill_3.1");
+  stage_[1] = times.add("infill_3.2");
+  stage_[2] = times.add("infill_3.3");
+  stage_[3] = times.add("infill_3.4");
+}
+
+void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
+                        StageTimes* times) {
+  double largest_motion = 0.0;
+  for (std::size_t c = 0; c < coarse_dense_.size(); ++c) {
+    coarse_start_[c] = positions_m[coarse_dense_[c]];
+    largest_motion = std::max(largest_motion, (coarse_m[c] - coarse_start_[c]).norm());
+  }
+  const double cell_side = std::min(grid_.row_stride * lattice_.spacing_y_m,
+                                    grid_.col_stride * lattice_.spacing_x_m);
+  const int steps = std::max(1, int(std::ceil(largest_motion / (kMaxStepFraction * cell_side))));
+  last_steps_ = steps;
+  last_sweeps_ = 0;
+  for (int s = 1; s <= steps; ++s) {
+    const double t = double(s) / steps;
+    for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
+      coarse_step_[c] = s == steps ? coarse_m[c] : Vec3(coarse_start_[c] + t * (coarse_m[c] - coarse_start_[c]));
+    deform(coarse_step_, positions_m, times);
+  }
+}
+
+void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m,
+                          StageTimes* times) {
+  auto timed = [&](int stage, auto&& work) {
+    if (times && stage_[stage] >= 0) {
+      ScopedStageTimer timer(*times, stage_[stage]);
+      work();
+    } else {
+      work();
+    }
+  };
+  std::copy(positions_m.begin(), positions_m.end(), previous_.begin());
+  timed(0, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
+    for (std::size_t c = 0; c < coarse_dense_.size(); ++c) positions_m[coarse_dense_[c]] = coarse_target_m[c];
+    for (const Fiber& edge : edges_) {
+      weighted_initial_move(edge, positions_m, previous_);
+      length_search(edge, positions_m, previous_, kLengthTolerance);
+      relax_fiber(edge, positions_m, relax_sweeps_, kRelaxTolerance);
+    }
+  });
+  timed(1, [&] { initial_move_interior(positions_m); });  // 3.2
+  timed(2, [&] {  // 3.3: rows, then columns
+    for (const Fiber& row : cell_rows_) length_search(row, positions_m, previous_, kLengthTolerance);
+    for (const Fiber& col : cell_cols_) length_search(col, positions_m, previous_, kLengthTolerance);
+  });
+  timed(3, [&] {  // 3.4
+    last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
+  });
+}
+
+void InfillSolver::initial_move_interior(std::span<Vec3> positions_m) const {
+  // Node (j, k) inside the cell with corners (j0, k0), (j0+rs, k0+cs): its row
+  // ends are (j, k0) and (j, k0+cs), its column ends (j0, k) and (j0+rs, k).
+  const int rs = grid_.row_stride, cs = grid_.col_stride;
+  auto motion = [&](std::size_t n) -> Vec3 { return positions_m[n] - previous_[n]; };
+  for (int jc = 0; jc + 1 < grid_.coarse_rows; ++jc) {
+    for (int kc = 0; kc + 1 < grid_.coarse_cols; ++kc) {
+      const int j0 = jc * rs, k0 = kc * cs;
+      for (int j = j0 + 1; j < j0 + rs; ++j) {
+        const double s_col = double(j - j0) / rs;
+        const Vec3 left = motion(lattice_.index(j, k0)), right = motion(lattice_.index(j, k0 + cs));
+        for (int k = k0 + 1; k < k0 + cs; ++k) {
+          const double s_row = double(k - k0) / cs;
+          const Vec3 along_row = (1.0 - s_row) * left + s_row * right;
+          const Vec3 along_col = (1.0 - s_col) * motion(lattice_.index(j0, k)) + s_col * motion(lattice_.index(j0 + rs, k));
+          const std::size_t n = lattice_.index(j, k);
+          // 3.2: each interpolated motion times its weight, the two averaged.
+          positions_m[n] = previous_[n] + 0.5 * (end_weight(s_row) * along_row + end_weight(s_col) * along_col);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace flagsim::infill
