@@ -18,8 +18,14 @@ InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_
       const std::size_t n = grid.dense_index(fine, jc, kc);
       coarse_dense_.push_back(n);
       held_[n] = 1;
-      if (kc + 1 < grid.coarse_cols && cs > 1) edges_.push_back({n, 1, cs, fine.spacing_x_m});
-      if (jc + 1 < grid.coarse_rows && rs > 1) edges_.push_back({n, cols, rs, fine.spacing_y_m});
+      const auto coarse_at = [&](int j, int k) -> std::ptrdiff_t {
+        if (j < 0 || k < 0 || j >= grid.coarse_rows || k >= grid.coarse_cols) return -1;
+        return std::ptrdiff_t(grid.dense_index(fine, j, k));
+      };
+      if (kc + 1 < grid.coarse_cols && cs > 1)
+        edges_.push_back({{n, 1, cs, fine.spacing_x_m}, coarse_at(jc, kc - 1), coarse_at(jc, kc + 2)});
+      if (jc + 1 < grid.coarse_rows && rs > 1)
+        edges_.push_back({{n, cols, rs, fine.spacing_y_m}, coarse_at(jc - 1, kc), coarse_at(jc + 2, kc)});
     }
   }
   for (int jc = 0; jc + 1 < grid.coarse_rows; ++jc) {
@@ -76,10 +82,9 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
   std::copy(positions_m.begin(), positions_m.end(), previous_.begin());
   timed(0, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
     for (std::size_t c = 0; c < coarse_dense_.size(); ++c) positions_m[coarse_dense_[c]] = coarse_target_m[c];
-    for (const Fiber& edge : edges_) {
-      weighted_initial_move(edge, positions_m, previous_);
-      length_search(edge, positions_m, previous_, kLengthTolerance);
-      relax_fiber(edge, positions_m, relax_sweeps_, kRelaxTolerance);
+    for (const Edge& edge : edges_) {
+      place_edge(edge, positions_m);
+      relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
     }
   });
   timed(1, [&] { initial_move_interior(positions_m); });  // 3.2
@@ -90,6 +95,26 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
   timed(3, [&] {  // 3.4
     last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
   });
+}
+
+void InfillSolver::place_edge(const Edge& edge, std::span<Vec3> positions_m) const {
+  const Fiber& fiber = edge.fiber;
+  if (edge.before < 0 && edge.after < 0) {  // alone on its line: the paper's fiber steps
+    weighted_initial_move(fiber, positions_m, previous_);
+    length_search(fiber, positions_m, previous_, kLengthTolerance);
+    return;
+  }
+  // Uniform Catmull-Rom through p_before, p0, p1, p_after; a missing neighbour
+  // is the straight continuation of the edge.
+  const Vec3 p0 = positions_m[fiber.node(0)], p1 = positions_m[fiber.node(fiber.segments)];
+  const Vec3 before = edge.before >= 0 ? positions_m[std::size_t(edge.before)] : Vec3(2.0 * p0 - p1);
+  const Vec3 after = edge.after >= 0 ? positions_m[std::size_t(edge.after)] : Vec3(2.0 * p1 - p0);
+  const Vec3 m0 = 0.5 * (p1 - before), m1 = 0.5 * (after - p0);  // tangents per cell
+  for (int i = 1; i < fiber.segments; ++i) {
+    const double t = double(i) / fiber.segments, t2 = t * t, t3 = t2 * t;
+    positions_m[fiber.node(i)] = (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 +
+                                 (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * m1;
+  }
 }
 
 void InfillSolver::initial_move_interior(std::span<Vec3> positions_m) const {

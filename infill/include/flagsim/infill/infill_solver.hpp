@@ -4,11 +4,17 @@
 //
 // One deformation step runs, in order:
 //  3.1 boundary: every cell edge (the dense nodes between two neighbouring
-//      coarse nodes) is a fiber whose ends are given; it gets the fiber
-//      treatment of 3.2-3.4 on its own (interpretation: the paper gives the
-//      edges directly; with only coarse nodes given, each edge is a fiber like
-//      any other). Edges shared by two cells are computed once, so the dense
-//      lattice is seamless.
+//      coarse nodes) is a fiber whose ends are given. The paper gives the
+//      edges directly ("or computed by something else"); interpretation:
+//      - an edge on a coarse line with more coarse nodes (the hybrid case)
+//        starts on the Catmull-Rom curve through the coarse nodes of that line,
+//        so it bends the way the coarse lattice does (interpolating the end
+//        motions alone keeps every edge a straight chord, which no relaxation
+//        can bend: a straight chain has no stiffness across itself);
+//      - an edge alone on its line (corners only, paper Figs. 9-10) gets the
+//        fiber treatment of 3.2-3.3 from its two ends and its previous shape.
+//      Either is then relaxed as a fiber (3.4). Edges shared by two cells are
+//      computed once, so the dense lattice is seamless.
 //  3.2 initial move of each cell's interior: the motions of a node's row ends
 //      and column ends (on the cell's edges), interpolated and weighted by
 //      end_weight(), averaged.
@@ -30,13 +36,17 @@
 
 namespace flagsim::infill {
 
-/// Largest coarse-node motion per deformation step, as a fraction of the smaller cell side.
-inline constexpr double kMaxStepFraction = 0.25;
+/// Largest coarse-node motion per deformation step, as a fraction of the smaller
+/// cell side: a node that crosses a whole cell in one frame is a "big motion".
+/// (At a quarter cell, a flag frame took 2-3 deformation steps, each a full
+/// 3.1-3.4, for no gain in strain.)
+inline constexpr double kMaxStepFraction = 1.0;
 /// 3.3 runs on a fiber whose length is off its rest length by more than this (relative).
 inline constexpr double kLengthTolerance = 0.005;
 /// 3.4 stops once every link is within this of its rest length (relative):
-/// a tenth of the 1% strain the issue bounds.
-inline constexpr double kRelaxTolerance = 0.001;
+/// half the 1% strain bound. (At 0.1% the relaxation ran to its sweep cap on
+/// every frame, 30x the time, while the worst link sat at 0.08-0.1%.)
+inline constexpr double kRelaxTolerance = 0.005;
 
 class InfillSolver {
  public:
@@ -61,7 +71,16 @@ class InfillSolver {
   Lattice lattice_;
   CellGrid grid_;
   int relax_sweeps_;
-  std::vector<Fiber> edges_;        ///< every cell edge, once
+  /// A cell edge, with the dense indices of the coarse nodes one cell before
+  /// its start and one cell after its end on the same coarse line (-1: none).
+  struct Edge {
+    Fiber fiber;
+    std::ptrdiff_t before = -1;
+    std::ptrdiff_t after = -1;
+  };
+  void place_edge(const Edge& edge, std::span<Vec3> positions_m) const;
+
+  std::vector<Edge> edges_;         ///< every cell edge, once
   std::vector<Fiber> cell_rows_;    ///< interior rows of every cell, ends on the cell's side edges
   std::vector<Fiber> cell_cols_;    ///< interior columns of every cell
   std::vector<std::uint8_t> held_;  ///< coarse nodes
