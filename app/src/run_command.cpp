@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/scene_parser.hpp"
@@ -17,6 +16,7 @@
 #include "flagsim/data/frame_writer.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
+#include "simulation.hpp"
 
 namespace flagsim::app {
 namespace {
@@ -48,61 +48,59 @@ int run_command(const RunOptions& options) {
   if (!options.render.empty())
     throw UserError("--render: rendering is not available in this version of flag-sim");
 
-  physics::SpringDamperSolver solver(scene);
+  const std::unique_ptr<Simulation> simulation = make_simulation(scene);
   StageTimes times;
-  solver.register_stages(times);
+  simulation->register_stages(times);
   const int checks_stage = times.add("checks");
   const int output_stage = times.add("output");
 
   data::RunInfo info;
   info.mode = to_string(scene.mode);
-  info.effects = solver.effects();
+  info.effects = simulation->effects();
   info.scene_toml = scene.toml_text;
   info.version = std::string(version());
   info.seed = scene.seed;
   info.stages = times.names();
   info.output_stage = output_stage;
-  info.numbers = {{"substep_seconds", solver.substep_s()},
-                  {"substeps_per_frame", double(solver.substeps_per_frame())},
-                  {"stable_substep_seconds", solver.stable_substep_s()},
-                  {"fps", scene.fps}};
-  const Lattice lattice = solver.model().lattice;
+  info.numbers = simulation->numbers();
+  info.numbers.emplace_back("fps", scene.fps);
+  const Lattice& lattice = simulation->lattice();
   data::FrameWriter writer(output_path_of(options, scene), lattice, info, scene.output.flush_every);
 
   InterruptGuard interrupt;
   Progress progress(!options.quiet && isatty(STDERR_FILENO), scene.simulated_frames());
-  physics::ClothState state = solver.initial_state(scene.seed);
   const int frames = scene.simulated_frames();
   double max_strain_seen = 0.0, total_wall_s = 0.0;
   auto since_write = std::chrono::steady_clock::now();
   std::string status = "complete", reason;
   for (int frame = 0; frame < frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
-    if (frame > 0) solver.advance_frame(state, &times);
+    if (frame > 0) simulation->advance_frame(&times);
+    const std::span<const Vec3> positions = simulation->positions();
     StrainStats strain;
     {
       ScopedStageTimer timer(times, checks_stage);
-      strain = link_strain(lattice, state.x_m);
-      if (auto why = divergence_reason(state.x_m, state.v_m_s, strain, scene.limits)) {
+      strain = link_strain(lattice, positions);
+      if (auto why = divergence_reason(positions, simulation->velocities(), strain, scene.limits)) {
         status = "diverged";
-        reason = fmt::format("at t = {:.4g} s (frame {}): {}", state.time_s, frame, *why);
+        reason = fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
       }
     }
     if (status == "diverged") break;
     max_strain_seen = std::max(max_strain_seen, strain.max);
     if (frame % scene.output.every == 0) {
       data::FrameStats stats{strain.max, strain.mean, times.seconds(), seconds_since(since_write),
-                             solver.kinetic_energy(state)};
+                             simulation->kinetic_energy_j()};
       // Frame times are n / fps exactly, not the sum of the substeps.
-      writer.write_frame(frame / scene.fps, state.x_m, stats);
+      writer.write_frame(frame / scene.fps, positions, stats);
       times.reset();
       since_write = std::chrono::steady_clock::now();
     }
     total_wall_s += seconds_since(frame_start);
-    progress.update(frame, state.time_s, 1000.0 * total_wall_s / (frame + 1));
+    progress.update(frame, frame / scene.fps, 1000.0 * total_wall_s / (frame + 1));
     if (InterruptGuard::requested() && frame + 1 < frames) {
       status = "interrupted";
-      reason = fmt::format("signal received after frame {} (t = {:.4g} s)", frame, state.time_s);
+      reason = fmt::format("signal received after frame {} (t = {:.4g} s)", frame, frame / scene.fps);
       break;
     }
   }
@@ -115,11 +113,9 @@ int run_command(const RunOptions& options) {
                writer.frames_written(), writer.path());
     return int(ExitCode::kDiverged);
   }
-  fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {} substeps/frame of {:.3g} s, "
-             "max strain {:.3f}% -> {}\n",
+  fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
              status, writer.frames_written(), lattice.rows, lattice.cols, to_string(scene.mode),
-             ms_per_frame, solver.substeps_per_frame(), solver.substep_s(), 100.0 * max_strain_seen,
-             writer.path());
+             ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
   return status == "interrupted" ? int(ExitCode::kInterrupted) : int(ExitCode::kSuccess);
 }
 

@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "flagsim/coarse_physics/spring_damper.hpp"
+#include "simulation.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/scene_parser.hpp"
 
@@ -16,13 +16,14 @@ Scene load_scene(const std::string& scene_path, const std::vector<std::string>& 
 
 int validate_command(const std::string& scene_path) {
   const Scene scene = load_scene(scene_path, {});
-  const physics::SpringDamperSolver solver(scene);
-  fmt::print("ok: {}: scene \"{}\", mode {}, {} x {} nodes, {} frames at {} fps, effects {}; "
-             "substep {:.3g} s ({} per frame, stability limit {:.3g} s)\n",
+  const std::unique_ptr<Simulation> simulation = make_simulation(scene);
+  std::string stepping;
+  for (const auto& [name, value] : simulation->numbers())
+    stepping += fmt::format(", {} {:.4g}", name, value);
+  fmt::print("ok: {}: scene \"{}\", mode {}, {} x {} nodes, {} frames at {} fps, effects {}{}\n",
              scene_path, scene.name, to_string(scene.mode), scene.flag.fine_rows,
              scene.flag.fine_cols, scene.simulated_frames(), scene.fps,
-             fmt::join(solver.effects(), ","), solver.substep_s(), solver.substeps_per_frame(),
-             solver.stable_substep_s());
+             fmt::join(simulation->effects(), ","), stepping);
   return int(ExitCode::kSuccess);
 }
 

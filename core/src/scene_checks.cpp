@@ -52,15 +52,33 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
     scene_in.fail("mode", "hybrid mode needs flag.coarse = [Jc, Kc], the lattice the physics runs on");
   if (scene.pole && flag.pin == PinSet::kNone)
     fail_at(root, "pole", "a moving pole needs pinned nodes; set flag.pin (e.g. \"left\")");
-  if (scene.mode == Mode::kInfill && scene.keyframes.empty())
-    scene_in.fail("mode", "infill mode needs [[keyframe]] tables with the corner positions");
+  if (scene.mode == Mode::kInfill) {
+    if (scene.keyframes.empty())
+      scene_in.fail("mode", "infill mode needs [[keyframe]] tables with the corner positions");
+    // No physics in infill mode: a physics table would be silently ignored.
+    const std::pair<bool, const char*> physics[] = {{scene.wind.has_value(), "wind"},
+                                                    {scene.pole.has_value(), "pole"},
+                                                    {scene.bending.has_value(), "bending"},
+                                                    {root.table().contains("gravity"), "gravity"},
+                                                    {root.table().contains("solver"), "solver"}};
+    for (const auto& [present, table] : physics)
+      if (present)
+        fail_at(root, table, "infill mode has no physics (the corners follow the keyframes); "
+                             "remove the table or choose another scene.mode");
+    if (flag.coarse && (*flag.coarse)[0] * (*flag.coarse)[1] != 4)
+      fail_at(root, "flag.coarse", "infill mode drives the 4 corners only: use [2, 2] or leave it out");
+  } else if (!scene.keyframes.empty()) {
+    fail_at(root, "keyframe", "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
+  } else if (scene.infill) {
+    fail_at(root, "infill", "[infill] settings need a mode with the infill (\"infill\")");
+  }
 }
 
 void reject_unbuilt_features(const Scene& scene, const TableReader& root,
                              const TableReader& scene_in) {
   constexpr const char* kHint = "is not available in this version of flag-sim";
-  if (scene.mode != Mode::kMassSpring)
-    scene_in.fail("mode", fmt::format("mode \"{}\" {} (available: \"mass-spring\")",
+  if (scene.mode != Mode::kMassSpring && scene.mode != Mode::kInfill)
+    scene_in.fail("mode", fmt::format("mode \"{}\" {} (available: \"mass-spring\", \"infill\")",
                                       to_string(scene.mode), kHint));
   if (scene.solver.backend != "spring-damper")
     fail_at(root, "solver.backend",
@@ -72,9 +90,7 @@ void reject_unbuilt_features(const Scene& scene, const TableReader& root,
   reject_table(scene.wind && scene.wind->gusts, "wind.gusts", "gusting wind");
   reject_table(scene.wind && scene.wind->turbulence, "wind.turbulence", "turbulent wind");
   reject_table(scene.wrinkles.has_value(), "wrinkles", "the wrinkle step (paper 3.5)");
-  reject_table(scene.infill.has_value(), "infill", "the infill (paper 3.1-3.5)");
   reject_table(scene.render.has_value(), "render", "rendering");
-  reject_table(!scene.keyframes.empty(), "keyframe", "keyframed corners (infill mode)");
 }
 
 }  // namespace flagsim::detail

@@ -42,7 +42,7 @@ namespace flagsim::infill {
 /// 3.1-3.4, for no gain in strain.)
 inline constexpr double kMaxStepFraction = 1.0;
 /// 3.3 runs on a fiber whose length is off its rest length by more than this (relative).
-inline constexpr double kLengthTolerance = 0.005;
+inline constexpr double kLengthTolerance = 0.0001;
 /// 3.4 stops once every link is within this of its rest length (relative):
 /// half the 1% strain bound. (At 0.1% the relaxation ran to its sweep cap on
 /// every frame, 30x the time, while the worst link sat at 0.08-0.1%.)

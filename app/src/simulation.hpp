@@ -1,0 +1,39 @@
+#pragma once
+// What `flag-sim run` drives, whatever the mode: a state advanced frame by
+// frame, read by the run loop (checks, output) but never reached into.
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/scene.hpp"
+#include "flagsim/core/stage_times.hpp"
+
+namespace flagsim::app {
+
+class Simulation {
+ public:
+  virtual ~Simulation() = default;
+  virtual const Lattice& lattice() const = 0;
+  /// Effects in pipeline order (root attribute `effects`).
+  virtual std::vector<std::string> effects() const = 0;
+  /// Numeric root attributes describing the stepping (substep_seconds, ...).
+  virtual std::vector<std::pair<std::string, double>> numbers() const = 0;
+  /// One timing column per stage, in pipeline order.
+  virtual void register_stages(StageTimes& times) = 0;
+  /// Advances to the next output frame (1/fps later).
+  virtual void advance_frame(StageTimes* times) = 0;
+  /// Dense lattice [J*K], m, and node velocities [J*K], m/s.
+  virtual std::span<const Vec3> positions() const = 0;
+  virtual std::span<const Vec3> velocities() const = 0;
+  virtual double kinetic_energy_j() const = 0;
+  /// What the summary line says about the stepping ("1001 substeps/frame of 3.3e-05 s").
+  virtual std::string stepping_summary() const = 0;
+};
+
+/// The simulation of the scene's mode, at its frame 0.
+std::unique_ptr<Simulation> make_simulation(const Scene& scene);
+
+}  // namespace flagsim::app
