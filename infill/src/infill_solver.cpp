@@ -9,8 +9,9 @@
 
 namespace flagsim::infill {
 
-InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps)
-    : lattice_(fine), grid_(grid), relax_sweeps_(relax_sweeps) {
+InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps,
+                           std::optional<WrinkleParams> wrinkles, int rounds)
+    : lattice_(fine), grid_(grid), relax_sweeps_(relax_sweeps), wrinkles_(wrinkles), rounds_(rounds) {
   const int rs = grid.row_stride, cs = grid.col_stride, cols = fine.cols;
   held_.assign(fine.node_count(), 0);
   for (int jc = 0; jc < grid.coarse_rows; ++jc) {
@@ -47,6 +48,36 @@ void InfillSolver::register_stages(StageTimes& times) {
   stage_[1] = times.add("infill_3.2");
   stage_[2] = times.add("infill_3.3");
   stage_[3] = times.add("infill_3.4");
+  if (wrinkles_) stage_[4] = times.add("infill_3.5");
+}
+
+std::size_t InfillSolver::cell_corner_of(std::size_t node) const {
+  const int j = int(node / std::size_t(lattice_.cols)), k = int(node % std::size_t(lattice_.cols));
+  const int jc = std::min(j / grid_.row_stride, grid_.coarse_rows - 2);
+  const int kc = std::min(k / grid_.col_stride, grid_.coarse_cols - 2);
+  return lattice_.index(jc * grid_.row_stride, kc * grid_.col_stride);
+}
+
+Vec3 InfillSolver::cell_normal(std::size_t corner, std::span<const Vec3> positions_m) const {
+  const std::size_t down = std::size_t(grid_.row_stride) * std::size_t(lattice_.cols);
+  const std::size_t right = std::size_t(grid_.col_stride);
+  const Vec3& p00 = positions_m[corner];
+  const Vec3& p01 = positions_m[corner + right];
+  const Vec3& p10 = positions_m[corner + down];
+  const Vec3& p11 = positions_m[corner + down + right];
+  return ((p01 - p00) + (p11 - p10)).cross((p10 - p00) + (p11 - p01));
+}
+
+void InfillSolver::rewrinkle(std::span<Vec3> positions_m) {
+  // Each fiber's ends are on its cell's edges, which 3.5 leaves as 3.1 put them,
+  // except lone edges (corners only), which get the same treatment first.
+  for (const Edge& edge : edges_)
+    if (edge.before < 0 && edge.after < 0)
+      rewrinkle_fiber(edge.fiber, positions_m, cell_normal(cell_corner_of(edge.fiber.first), positions_m), *wrinkles_);
+  for (const Fiber& row : cell_rows_)
+    rewrinkle_fiber(row, positions_m, cell_normal(cell_corner_of(row.first), positions_m), *wrinkles_);
+  for (const Fiber& col : cell_cols_)
+    rewrinkle_fiber(col, positions_m, cell_normal(cell_corner_of(col.first), positions_m), *wrinkles_);
 }
 
 void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
@@ -95,6 +126,13 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
   timed(3, [&] {  // 3.4
     last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
   });
+  if (!wrinkles_) return;  // no [wrinkles]: 3.5 is not scheduled at all
+  for (int round = 0; round < rounds_; ++round) {
+    timed(4, [&] { rewrinkle(positions_m); });
+    timed(3, [&] {
+      last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
+    });
+  }
 }
 
 void InfillSolver::place_edge(const Edge& edge, std::span<Vec3> positions_m) const {

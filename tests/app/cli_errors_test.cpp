@@ -72,6 +72,8 @@ const std::vector<BadInput>& cases() {
        {"run", "SCENE"}, "keyframe.time: keyframes must be in increasing time; 0.5 s follows 1 s"},
       {"unbuilt_wrinkles", with("[wrinkles]\nfiber_radius = 0.001\n"), {"run", "SCENE"},
        "wrinkles: the wrinkle step (paper 3.5) is not available in this version"},
+      {"unbuilt_gusts", with("[wind]\nvelocity = [5, 0, 0]\n[wind.gusts]\namplitude = 0.2\n"), {"run", "SCENE"},
+       "wind.gusts: gusting wind is not available in this version"},
       {"unbuilt_mode", kBase, {"run", "SCENE", "--mode", "hybrid"},
        "mode \"hybrid\" is not available in this version of flag-sim (available: \"mass-spring\", \"infill\")"},
       {"infill_mode_with_wind",

@@ -90,8 +90,8 @@ TEST(SceneParser, CoarseMustDivideFineAndSaysWhatWould) {
 }
 
 TEST(SceneParser, UnbuiltFeaturesAreRejectedNotIgnored) {
-  EXPECT_NE(error_of(std::string(kMinimal) + "[wrinkles]\nfiber_radius = 0.001\n")
-                .find("wrinkles: the wrinkle step (paper 3.5) is not available"),
+  EXPECT_NE(error_of(std::string(kMinimal) + "[wind.gusts]\namplitude = 0.2\n")
+                .find("wind.gusts: gusting wind is not available"),
             std::string::npos);
   EXPECT_NE(error_of(kMinimal, {"scene.mode=bullet"}).find("mode \"bullet\" is not available"),
             std::string::npos);

@@ -80,5 +80,15 @@ TEST(InfillSolver, FollowsAGraduallyRolledClothSeamlessly) {
   EXPECT_LE(inner_strain, kRelaxTolerance);
 }
 
+TEST(InfillSolver, StepFiveIsScheduledOnlyWithWrinkles) {
+  const Lattice lattice = Lattice::rectangle(9, 13, 1.5, 1.0, Vec3::Zero());
+  StageTimes without, with;
+  InfillSolver(lattice, CellGrid::of(lattice, 3, 4), 20).register_stages(without);
+  InfillSolver(lattice, CellGrid::of(lattice, 3, 4), 20, WrinkleParams{1e-4, 1.0, 0.5}).register_stages(with);
+  const std::vector<std::string> four = {"infill_3.1", "infill_3.2", "infill_3.3", "infill_3.4"};
+  EXPECT_EQ(without.names(), four);
+  EXPECT_EQ(with.names().back(), "infill_3.5");
+}
+
 }  // namespace
 }  // namespace flagsim::infill

@@ -20,12 +20,15 @@
 //      end_weight(), averaged.
 //  3.3 length search on every row, then every column, of every cell.
 //  3.4 relaxation of the whole lattice with the coarse nodes held.
+//  3.5 (only when given WrinkleParams) re-move by the bending feature on every
+//      cell row, then column (wrinkles.hpp), then 3.4 again; `rounds` times.
 // Big motions are cut (3.1): if a coarse node moves more than kMaxStepFraction
 // of the smaller cell side, the motion is split into equal deformation steps,
 // each run in full. The state carried between frames is the dense lattice
 // itself: every fill starts from the previous one, which is what lets a shape
 // persist (property 2). Work buffers are kept: fill() does not allocate.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -33,6 +36,7 @@
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/fiber.hpp"
+#include "flagsim/infill/wrinkles.hpp"
 
 namespace flagsim::infill {
 
@@ -41,7 +45,10 @@ namespace flagsim::infill {
 /// (At a quarter cell, a flag frame took 2-3 deformation steps, each a full
 /// 3.1-3.4, for no gain in strain.)
 inline constexpr double kMaxStepFraction = 1.0;
-/// 3.3 runs on a fiber whose length is off its rest length by more than this (relative).
+/// 3.3 runs on a fiber whose length is off its rest length by more than this
+/// (relative). Small on purpose: the weighted move of 3.2 leaves the middle of
+/// every fiber behind a little each frame, and at 0.5% that lag piled up over
+/// frames (sheared.toml: 4.5% strain; 0.53% at 0.01%).
 inline constexpr double kLengthTolerance = 0.0001;
 /// 3.4 stops once every link is within this of its rest length (relative):
 /// half the 1% strain bound. (At 0.1% the relaxation ran to its sweep cap on
@@ -51,9 +58,12 @@ inline constexpr double kRelaxTolerance = 0.005;
 class InfillSolver {
  public:
   /// @param relax_sweeps  most passes of 3.4 per deformation step ([infill] relax_iterations)
-  InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps);
+  /// @param wrinkles      step 3.5, or nullopt to leave it out (no [wrinkles] table)
+  /// @param rounds        3.5/3.4 alternations per deformation step
+  InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps,
+               std::optional<WrinkleParams> wrinkles = std::nullopt, int rounds = 2);
 
-  /// Registers the timing columns "infill_3.1" ... "infill_3.4".
+  /// Registers the timing columns "infill_3.1" ... "infill_3.4" (and "infill_3.5").
   void register_stages(StageTimes& times);
 
   /// @param coarse_m     new coarse node positions [Jc*Kc], m
@@ -67,10 +77,17 @@ class InfillSolver {
  private:
   void deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m, StageTimes* times);
   void initial_move_interior(std::span<Vec3> positions_m) const;
+  /// The cloth's normal over the cell whose top-left dense node is `corner`.
+  Vec3 cell_normal(std::size_t corner, std::span<const Vec3> positions_m) const;
+  /// Dense index of the top-left node of the cell holding fiber node `node`.
+  std::size_t cell_corner_of(std::size_t node) const;
+  void rewrinkle(std::span<Vec3> positions_m);
 
   Lattice lattice_;
   CellGrid grid_;
   int relax_sweeps_;
+  std::optional<WrinkleParams> wrinkles_;
+  int rounds_;
   /// A cell edge, with the dense indices of the coarse nodes one cell before
   /// its start and one cell after its end on the same coarse line (-1: none).
   struct Edge {
@@ -87,7 +104,7 @@ class InfillSolver {
   std::vector<std::size_t> coarse_dense_;  ///< dense index of each coarse node
   std::vector<Vec3> previous_;      ///< the lattice before the current deformation step
   std::vector<Vec3> coarse_start_, coarse_step_;
-  int stage_[4] = {-1, -1, -1, -1};
+  int stage_[5] = {-1, -1, -1, -1, -1};
   int last_steps_ = 0, last_sweeps_ = 0;
 };
 
