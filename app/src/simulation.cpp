@@ -37,6 +37,17 @@ class MassSpringSimulation final : public Simulation {
   physics::ClothState state_;
 };
 
+// Step 3.5's constants from [wrinkles], or nullopt when the scene has none.
+std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
+  if (!scene.wrinkles) return std::nullopt;
+  const Wrinkles& w = *scene.wrinkles;
+  infill::WrinkleParams params;
+  params.k_r4 = infill::bending_constant_k_r4(w.fiber_modulus_pa, w.fiber_radius_m);
+  params.k_prime = w.k_prime.value_or(params.k_prime);
+  params.tolerance = w.tolerance.value_or(params.tolerance);
+  return params;
+}
+
 // mode "infill": no physics; the corners follow the keyframes and the whole
 // lattice comes from the paper's infill (Figs. 9-10). Velocities are the
 // frame-to-frame differences, for the divergence checks and kinetic energy.
@@ -46,7 +57,8 @@ class InfillSimulation final : public Simulation {
       : scene_(scene),
         lattice_(scene.fine_lattice()),
         solver_(lattice_, infill::CellGrid::of(lattice_, 2, 2),
-                scene.infill ? scene.infill->relax_iterations : kDefaultRelaxSweeps),
+                scene.infill ? scene.infill->relax_iterations : kDefaultRelaxSweeps,
+                wrinkle_params(scene), scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0),
         mass_kg_(physics::make_cloth_model(scene).mass_kg) {
     positions_ = lattice_.rest_positions();
     if (scene.flag.initial_perturbation_m > 0.0) {
@@ -59,7 +71,10 @@ class InfillSimulation final : public Simulation {
     std::fill(velocities_.begin(), velocities_.end(), Vec3::Zero());
   }
   const Lattice& lattice() const override { return lattice_; }
-  std::vector<std::string> effects() const override { return {"keyframes", "infill"}; }
+  std::vector<std::string> effects() const override {
+    if (scene_.wrinkles) return {"keyframes", "infill", "wrinkles"};
+    return {"keyframes", "infill"};
+  }
   std::vector<std::pair<std::string, double>> numbers() const override { return {}; }
   void register_stages(StageTimes& times) override { solver_.register_stages(times); }
   void advance_frame(StageTimes* times) override {

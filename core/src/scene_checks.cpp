@@ -71,6 +71,9 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
     fail_at(root, "keyframe", "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
   } else if (scene.infill) {
     fail_at(root, "infill", "[infill] settings need a mode with the infill (\"infill\")");
+  } else if (scene.wrinkles) {
+    fail_at(root, "wrinkles", "wrinkles are made by the infill (paper 3.5); they need scene.mode = "
+                              "\"infill\" (the hybrid mode is not available in this version)");
   }
 }
 
@@ -89,7 +92,6 @@ void reject_unbuilt_features(const Scene& scene, const TableReader& root,
   };
   reject_table(scene.wind && scene.wind->gusts, "wind.gusts", "gusting wind");
   reject_table(scene.wind && scene.wind->turbulence, "wind.turbulence", "turbulent wind");
-  reject_table(scene.wrinkles.has_value(), "wrinkles", "the wrinkle step (paper 3.5)");
   reject_table(scene.render.has_value(), "render", "rendering");
 }
 

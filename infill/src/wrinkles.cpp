@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace flagsim::infill {
 
@@ -33,13 +34,63 @@ double fiber_target_energy(const Fiber& fiber, std::span<const Vec3> positions_m
   return k_prime * fiber.rest_spacing_m * off * off;  // eq. (13), k' = k_prime h
 }
 
+namespace {
+
+// The wave x = s c, y = A sin(m pi s), s in [0, 1], sampled finely enough that
+// its polyline is its arc to well under the 0.5% relaxation tolerance. The
+// sines are tabulated once per wave (a reused buffer: no allocation per frame).
+class Wave {
+ public:
+  Wave(double chord, int half_waves, int samples) : chord_(chord), samples_(samples) {
+    thread_local std::vector<double> table;
+    table.resize(std::size_t(samples) + 1);
+    for (int k = 0; k <= samples; ++k)
+      table[std::size_t(k)] = std::sin(half_waves * std::numbers::pi * k / samples);
+    sines_ = table.data();
+  }
+  int samples() const { return samples_; }
+  Eigen::Vector2d at(int sample, double amplitude) const {
+    return {chord_ * sample / samples_, amplitude * sines_[sample]};
+  }
+  double length(double amplitude) const {
+    const double dx = chord_ / samples_;
+    double total = 0.0;
+    for (int k = 1; k <= samples_; ++k) total += std::hypot(dx, amplitude * (sines_[k] - sines_[k - 1]));
+    return total;
+  }
+  /// The amplitude whose wave is `length` long, by the secant method from the
+  /// small-slope estimate (which alone is too long at large slopes: relaxing the
+  /// surplus folds the crests).
+  double amplitude_for(double length, int half_waves) const {
+    const double slack = length - chord_;
+    double a0 = 2.0 * chord_ / (half_waves * std::numbers::pi) * std::sqrt(slack / chord_);
+    double a1 = 0.9 * a0;
+    double f0 = this->length(a0) - length, f1 = this->length(a1) - length;
+    for (int iteration = 0; iteration < 30 && std::abs(f1) > 1e-12 * length && f1 != f0; ++iteration) {
+      const double a2 = std::max(0.0, a1 - f1 * (a1 - a0) / (f1 - f0));
+      a0 = a1;
+      f0 = f1;
+      a1 = a2;
+      f1 = this->length(a1) - length;
+    }
+    return a1;
+  }
+
+ private:
+  double chord_;
+  int samples_;
+  const double* sines_;
+};
+
+}  // namespace
+
 bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3& normal,
                      const WrinkleParams& params) {
   if (fiber.segments < 2) return false;
   const double energy = fiber_bending_energy(fiber, positions_m, params.k_r4);
   const double target = fiber_target_energy(fiber, positions_m, params.k_prime);
   const double scale = std::max(energy, target);
-  if (scale <= 0.0 || std::abs(energy - target) <= params.tolerance * scale) return false;
+  if (scale <= 0.0 || std::abs(energy - target) < params.tolerance * scale) return false;
 
   const Vec3 start = positions_m[fiber.node(0)];
   const Vec3 chord_vec = positions_m[fiber.node(fiber.segments)] - start;
@@ -50,15 +101,21 @@ bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3
   if (across.norm() < 1e-12) return false;
   across.normalize();
   const double slack = fiber.rest_length_m() - chord;
-  int half_waves = 0;
+  int half_waves = 1;
   double amplitude = 0.0;
   if (slack > 0.0 && params.k_r4 > 0.0) {
     const double m = chord / std::numbers::pi * std::sqrt(params.k_prime * slack / (2.0 * params.k_r4));
     // A half-wave needs 4 segments to be a wave and not a zigzag of the lattice.
     const int finest = std::max(1, fiber.segments / 4);
     half_waves = std::clamp(int(std::lround(m)), 1, finest);
-    amplitude = 2.0 * chord / (half_waves * std::numbers::pi) * std::sqrt(slack / chord);
   }
+  if (slack <= 0.0 || params.k_r4 <= 0.0) {  // no slack: straight, evenly spaced
+    for (int i = 1; i < fiber.segments; ++i)
+      positions_m[fiber.node(i)] = start + (double(i) / fiber.segments) * chord_vec;
+    return true;
+  }
+  const Wave wave(chord, half_waves, 8 * fiber.segments);
+  amplitude = wave.amplitude_for(fiber.rest_length_m(), half_waves);
   // The sign that best matches the present shape keeps a wrinkle on its side.
   double match = 0.0;
   for (int i = 1; i < fiber.segments; ++i) {
@@ -67,10 +124,22 @@ bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3
     match += offset * std::sin(half_waves * std::numbers::pi * s);
   }
   const double sign = match < 0.0 ? -1.0 : 1.0;
+  // Nodes at equal arc length along the wave, so that 3.4 has little left to do.
+  const double step = wave.length(amplitude) / fiber.segments;
+  double walked = 0.0;
+  int sample = 0;
   for (int i = 1; i < fiber.segments; ++i) {
-    const double s = double(i) / fiber.segments;
-    positions_m[fiber.node(i)] =
-        start + s * chord_vec + (sign * amplitude * std::sin(half_waves * std::numbers::pi * s)) * across;
+    const double wanted = i * step;
+    Eigen::Vector2d a = wave.at(sample, amplitude), b = wave.at(sample + 1, amplitude);
+    while (walked + (b - a).norm() < wanted && sample + 1 < wave.samples()) {
+      walked += (b - a).norm();
+      ++sample;
+      a = b;
+      b = wave.at(sample + 1, amplitude);
+    }
+    const double piece = (b - a).norm();
+    const Eigen::Vector2d p = piece > 0.0 ? Eigen::Vector2d(a + (wanted - walked) / piece * (b - a)) : a;
+    positions_m[fiber.node(i)] = start + p.x() * along + (sign * p.y()) * across;
   }
   return true;
 }

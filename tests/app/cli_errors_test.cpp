@@ -70,8 +70,8 @@ const std::vector<BadInput>& cases() {
        with("[[keyframe]]\ntime = 1.0\ncorners = [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]\n"
             "[[keyframe]]\ntime = 0.5\ncorners = [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]\n"),
        {"run", "SCENE"}, "keyframe.time: keyframes must be in increasing time; 0.5 s follows 1 s"},
-      {"unbuilt_wrinkles", with("[wrinkles]\nfiber_radius = 0.001\n"), {"run", "SCENE"},
-       "wrinkles: the wrinkle step (paper 3.5) is not available in this version"},
+      {"wrinkles_without_infill", with("[wrinkles]\nfiber_radius = 0.001\n"), {"run", "SCENE"},
+       "wrinkles: wrinkles are made by the infill (paper 3.5); they need scene.mode = \"infill\""},
       {"unbuilt_gusts", with("[wind]\nvelocity = [5, 0, 0]\n[wind.gusts]\namplitude = 0.2\n"), {"run", "SCENE"},
        "wind.gusts: gusting wind is not available in this version"},
       {"unbuilt_mode", kBase, {"run", "SCENE", "--mode", "hybrid"},
