@@ -18,7 +18,7 @@ TEST_P(InfillScene, EveryLinkWithinOnePercentOnEveryFrame) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const data::OutputReader reader(dir.file("run.h5"));
   EXPECT_EQ(reader.attribute("mode"), "infill");
-  EXPECT_EQ(reader.attribute("effects"), "keyframes,infill");
+  EXPECT_EQ(reader.attribute("effects"), "keyframes,infill,wrinkles");
   ASSERT_EQ(reader.frame_count(), 61);
   const std::vector<double> strain = reader.stat("max_strain");
   for (std::size_t t = 0; t < strain.size(); ++t) EXPECT_LE(strain[t], 0.01) << "frame " << t;
