@@ -28,27 +28,44 @@ double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
   const double rest = fiber.rest_length_m();
   double error = std::abs(fiber.length_m(positions_m) - rest);
   if (error <= tolerance * rest || fiber.segments < 2) return 0.0;
-  // Straight lines from the current nodes to the targets, walked a tenth at a time.
+  // Node i walks start_i + t (target_i - start_i); segment i is then A_i + t B_i
+  // and the fiber's length sum_i sqrt(A.A + 2t A.B + t^2 B.B): each trial t
+  // costs one square root per segment and moves nothing.
   constexpr int kSteps = 10;
-  thread_local std::vector<Vec3> start, target;
-  start.resize(std::size_t(fiber.segments + 1));
-  target.resize(start.size());
+  thread_local std::vector<Vec3> step;
+  thread_local std::vector<double> aa, ab, bb;
+  const std::size_t n = std::size_t(fiber.segments);
+  step.assign(n + 1, Vec3::Zero());  // ends stay: their step is zero
+  aa.resize(n);
+  ab.resize(n);
+  bb.resize(n);
   for (int i = 1; i < fiber.segments; ++i) {
-    const std::size_t n = fiber.node(i);
-    start[i] = positions_m[n];
-    target[i] = previous_m[n] + interpolated_motion(fiber, double(i) / fiber.segments, positions_m, previous_m);
+    const std::size_t node = fiber.node(i);
+    const Vec3 target = previous_m[node] + interpolated_motion(fiber, double(i) / fiber.segments, positions_m, previous_m);
+    step[std::size_t(i)] = target - positions_m[node];
   }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 a = positions_m[fiber.node(int(i) + 1)] - positions_m[fiber.node(int(i))];
+    const Vec3 b = step[i + 1] - step[i];
+    aa[i] = a.squaredNorm();
+    ab[i] = a.dot(b);
+    bb[i] = b.squaredNorm();
+  }
+  auto length_at = [&](double t) {
+    double total = 0.0;
+    for (std::size_t i = 0; i < n; ++i) total += std::sqrt(std::max(0.0, aa[i] + t * (2.0 * ab[i] + t * bb[i])));
+    return total;
+  };
   int best = 0;
-  for (int step = 1; step <= kSteps; ++step) {
-    const double t = double(step) / kSteps;
-    for (int i = 1; i < fiber.segments; ++i) positions_m[fiber.node(i)] = start[i] + t * (target[i] - start[i]);
-    const double trial = std::abs(fiber.length_m(positions_m) - rest);
+  for (int k = 1; k <= kSteps; ++k) {
+    const double trial = std::abs(length_at(double(k) / kSteps) - rest);
     if (trial >= error) break;  // no longer approaching the rest length
     error = trial;
-    best = step;
+    best = k;
   }
   const double t = double(best) / kSteps;
-  for (int i = 1; i < fiber.segments; ++i) positions_m[fiber.node(i)] = start[i] + t * (target[i] - start[i]);
+  if (best > 0)
+    for (int i = 1; i < fiber.segments; ++i) positions_m[fiber.node(i)] += t * step[std::size_t(i)];
   return t;
 }
 
