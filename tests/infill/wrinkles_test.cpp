@@ -19,6 +19,25 @@ TEST(Wrinkles, TurningAngle) {
   EXPECT_NEAR(turning_angle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 1)), kPi / 4, 1e-15);
 }
 
+TEST(Wrinkles, TurningAngleMatchesTheSecondFiniteDifference) {
+  // On a smooth curve sampled at arc steps h, theta_i = |x_{i+1} - 2 x_i + x_{i-1}| / h
+  // + O(h^2): eq. (1)'s angle is the curvature times h, the finite-difference
+  // bending of the Terzopoulos model, at every node of a helix.
+  const double radius = 0.3, pitch = 0.1;
+  const double speed = std::hypot(radius, pitch);
+  for (double h : {0.02, 0.01, 0.005}) {
+    auto at = [&](double s) {
+      const double u = s / speed;
+      return Vec3(radius * std::cos(u), radius * std::sin(u), pitch * u);
+    };
+    for (int i = 1; i < 20; ++i) {
+      const Vec3 a = at((i - 1) * h), b = at(i * h), c = at((i + 1) * h);
+      const double finite_difference = (c - 2.0 * b + a).norm() / h;
+      EXPECT_NEAR(turning_angle(a, b, c), finite_difference, 0.01 * finite_difference) << h;
+    }
+  }
+}
+
 TEST(Wrinkles, BendingConstantIsEquationTen) {
   // k = 1/2 E pi/4 (eq. (10)); times r^4.
   EXPECT_DOUBLE_EQ(bending_constant_k_r4(2.0e9, 1e-3), 0.5 * 2.0e9 * kPi / 4 * 1e-12);
