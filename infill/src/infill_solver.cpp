@@ -5,7 +5,9 @@
 #include <optional>
 
 #include "flagsim/infill/relax.hpp"
-#include "flagsim/infill/steps.hpp"
+#include "flagsim/infill/boundary.hpp"
+#include "flagsim/infill/initial_move.hpp"
+#include "flagsim/infill/length_search.hpp"
 
 namespace flagsim::infill {
 
@@ -114,11 +116,11 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
   timed(0, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
     for (std::size_t c = 0; c < coarse_dense_.size(); ++c) positions_m[coarse_dense_[c]] = coarse_target_m[c];
     for (const Edge& edge : edges_) {
-      place_edge(edge, positions_m);
+      move_edge(edge.fiber, edge.before, edge.after, positions_m, previous_, kLengthTolerance);
       relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
     }
   });
-  timed(1, [&] { initial_move_interior(positions_m); });  // 3.2
+  timed(1, [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2
   timed(2, [&] {  // 3.3: rows, then columns
     for (const Fiber& row : cell_rows_) length_search(row, positions_m, previous_, kLengthTolerance);
     for (const Fiber& col : cell_cols_) length_search(col, positions_m, previous_, kLengthTolerance);
@@ -132,50 +134,6 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
     timed(3, [&] {
       last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
     });
-  }
-}
-
-void InfillSolver::place_edge(const Edge& edge, std::span<Vec3> positions_m) const {
-  const Fiber& fiber = edge.fiber;
-  if (edge.before < 0 && edge.after < 0) {  // alone on its line: the paper's fiber steps
-    weighted_initial_move(fiber, positions_m, previous_);
-    length_search(fiber, positions_m, previous_, kLengthTolerance);
-    return;
-  }
-  // Uniform Catmull-Rom through p_before, p0, p1, p_after; a missing neighbour
-  // is the straight continuation of the edge.
-  const Vec3 p0 = positions_m[fiber.node(0)], p1 = positions_m[fiber.node(fiber.segments)];
-  const Vec3 before = edge.before >= 0 ? positions_m[std::size_t(edge.before)] : Vec3(2.0 * p0 - p1);
-  const Vec3 after = edge.after >= 0 ? positions_m[std::size_t(edge.after)] : Vec3(2.0 * p1 - p0);
-  const Vec3 m0 = 0.5 * (p1 - before), m1 = 0.5 * (after - p0);  // tangents per cell
-  for (int i = 1; i < fiber.segments; ++i) {
-    const double t = double(i) / fiber.segments, t2 = t * t, t3 = t2 * t;
-    positions_m[fiber.node(i)] = (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 +
-                                 (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * m1;
-  }
-}
-
-void InfillSolver::initial_move_interior(std::span<Vec3> positions_m) const {
-  // Node (j, k) inside the cell with corners (j0, k0), (j0+rs, k0+cs): its row
-  // ends are (j, k0) and (j, k0+cs), its column ends (j0, k) and (j0+rs, k).
-  const int rs = grid_.row_stride, cs = grid_.col_stride;
-  auto motion = [&](std::size_t n) -> Vec3 { return positions_m[n] - previous_[n]; };
-  for (int jc = 0; jc + 1 < grid_.coarse_rows; ++jc) {
-    for (int kc = 0; kc + 1 < grid_.coarse_cols; ++kc) {
-      const int j0 = jc * rs, k0 = kc * cs;
-      for (int j = j0 + 1; j < j0 + rs; ++j) {
-        const double s_col = double(j - j0) / rs;
-        const Vec3 left = motion(lattice_.index(j, k0)), right = motion(lattice_.index(j, k0 + cs));
-        for (int k = k0 + 1; k < k0 + cs; ++k) {
-          const double s_row = double(k - k0) / cs;
-          const Vec3 along_row = (1.0 - s_row) * left + s_row * right;
-          const Vec3 along_col = (1.0 - s_col) * motion(lattice_.index(j0, k)) + s_col * motion(lattice_.index(j0 + rs, k));
-          const std::size_t n = lattice_.index(j, k);
-          // 3.2: each interpolated motion times its weight, the two averaged.
-          positions_m[n] = previous_[n] + 0.5 * (end_weight(s_row) * along_row + end_weight(s_col) * along_col);
-        }
-      }
-    }
   }
 }
 

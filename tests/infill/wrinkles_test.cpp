@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "flagsim/infill/steps.hpp"
+#include "flagsim/infill/relax.hpp"
 
 namespace flagsim::infill {
 namespace {

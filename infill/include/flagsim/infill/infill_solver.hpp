@@ -4,17 +4,8 @@
 //
 // One deformation step runs, in order:
 //  3.1 boundary: every cell edge (the dense nodes between two neighbouring
-//      coarse nodes) is a fiber whose ends are given. The paper gives the
-//      edges directly ("or computed by something else"); interpretation:
-//      - an edge on a coarse line with more coarse nodes (the hybrid case)
-//        starts on the Catmull-Rom curve through the coarse nodes of that line,
-//        so it bends the way the coarse lattice does (interpolating the end
-//        motions alone keeps every edge a straight chord, which no relaxation
-//        can bend: a straight chain has no stiffness across itself);
-//      - an edge alone on its line (corners only, paper Figs. 9-10) gets the
-//        fiber treatment of 3.2-3.3 from its two ends and its previous shape.
-//      Either is then relaxed as a fiber (3.4). Edges shared by two cells are
-//      computed once, so the dense lattice is seamless.
+//      coarse nodes) placed from its ends (boundary.hpp), then relaxed as a
+//      fiber. Edges shared by two cells are computed once: the lattice is seamless.
 //  3.2 initial move of each cell's interior: the motions of a node's row ends
 //      and column ends (on the cell's edges), interpolated and weighted by
 //      end_weight(), averaged.
@@ -76,7 +67,6 @@ class InfillSolver {
 
  private:
   void deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m, StageTimes* times);
-  void initial_move_interior(std::span<Vec3> positions_m) const;
   /// The cloth's normal over the cell whose top-left dense node is `corner`.
   Vec3 cell_normal(std::size_t corner, std::span<const Vec3> positions_m) const;
   /// Dense index of the top-left node of the cell holding fiber node `node`.
@@ -95,7 +85,6 @@ class InfillSolver {
     std::ptrdiff_t before = -1;
     std::ptrdiff_t after = -1;
   };
-  void place_edge(const Edge& edge, std::span<Vec3> positions_m) const;
 
   std::vector<Edge> edges_;         ///< every cell edge, once
   std::vector<Fiber> cell_rows_;    ///< interior rows of every cell, ends on the cell's side edges

@@ -1,0 +1,39 @@
+#include "flagsim/infill/length_search.hpp"
+
+#include "flagsim/infill/initial_move.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace flagsim::infill {
+namespace {
+
+// A straight fiber of 8 segments of 0.1 m along x.
+inline std::vector<Vec3> straight(int segments = 8) {
+  std::vector<Vec3> x;
+  for (int i = 0; i <= segments; ++i) x.emplace_back(0.1 * i, 0.0, 0.0);
+  return x;
+}
+
+TEST(LengthSearch, LengthSearchWalksTowardTheTargetsWhileTheLengthImproves) {
+  // Ends moved up together, middle left behind: the fiber is too long; the
+  // unweighted targets are the translated fiber, whose length is exact.
+  const Fiber fiber{0, 1, 8, 0.1};
+  const std::vector<Vec3> previous = straight();
+  std::vector<Vec3> x = previous;
+  x[0] += Vec3(0, 0.3, 0);
+  x[8] += Vec3(0, 0.3, 0);
+  weighted_initial_move(fiber, x, previous);
+  ASSERT_GT(fiber.length_m(x), 0.8 * 1.01);
+  EXPECT_EQ(length_search(fiber, x, previous, 0.005), 1.0);
+  EXPECT_NEAR(fiber.length_m(x), 0.8, 1e-12);
+  // Already at its rest length: nothing moves.
+  const std::vector<Vec3> before = x;
+  EXPECT_EQ(length_search(fiber, x, previous, 0.005), 0.0);
+  EXPECT_EQ(x, before);
+}
+
+}  // namespace
+}  // namespace flagsim::infill
