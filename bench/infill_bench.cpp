@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "flagsim/core/strain.hpp"
-
 #include "flagsim/infill/infill_solver.hpp"
 
 namespace {
@@ -19,11 +18,13 @@ using flagsim::infill::CellGrid;
 using flagsim::infill::InfillSolver;
 
 Vec3 rolled(const Vec3& rest, double kappa) {
-  return Vec3(std::sin(kappa * rest.x()) / kappa, rest.y(), (1.0 - std::cos(kappa * rest.x())) / kappa);
+  return Vec3(std::sin(kappa * rest.x()) / kappa, rest.y(),
+              (1.0 - std::cos(kappa * rest.x())) / kappa);
 }
 
 void infill_frame(benchmark::State& bench, std::optional<flagsim::infill::WrinkleParams> wrinkles) {
-  const Lattice lattice = Lattice::rectangle(int(bench.range(0)), int(bench.range(1)), 1.5, 1.0, Vec3::Zero());
+  const Lattice lattice =
+      Lattice::rectangle(int(bench.range(0)), int(bench.range(1)), 1.5, 1.0, Vec3::Zero());
   const CellGrid grid = CellGrid::of(lattice, 9, 13);
   InfillSolver solver(lattice, grid, 100, wrinkles, 2);
   const std::vector<Vec3> rest = lattice.rest_positions();
@@ -54,7 +55,9 @@ void infill_frame(benchmark::State& bench, std::optional<flagsim::infill::Wrinkl
   bench.counters["max_strain_pct"] = 100.0 * flagsim::link_strain(lattice, dense).max;
 }
 
-void BM_InfillFrame(benchmark::State& bench) { infill_frame(bench, std::nullopt); }
+void BM_InfillFrame(benchmark::State& bench) {
+  infill_frame(bench, std::nullopt);
+}
 
 // With step 3.5 (r = 1 mm, E_f = 1 GPa, k' = 1 J/m^3, two 3.5/3.4 rounds).
 void BM_InfillFrameWrinkles(benchmark::State& bench) {
@@ -66,7 +69,11 @@ void BM_InfillFrameWrinkles(benchmark::State& bench) {
 }  // namespace
 
 BENCHMARK(BM_InfillFrame)
-    ->Args({33, 49})->Args({65, 97})->Args({129, 193})->Args({257, 385})->Args({513, 769})
+    ->Args({33, 49})
+    ->Args({65, 97})
+    ->Args({129, 193})
+    ->Args({257, 385})
+    ->Args({513, 769})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InfillFrameWrinkles)->Args({33, 49})->Args({129, 193})->Unit(benchmark::kMillisecond);
 

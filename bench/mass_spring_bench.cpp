@@ -58,16 +58,18 @@ void BM_ForceTerm(benchmark::State& bench) {
     term.add_forces(state.x_m, state.v_m_s, forces);
     benchmark::DoNotOptimize(forces.data());
   }
-  bench.counters["nodes_per_second"] = benchmark::Counter(
-      double(state.x_m.size()), benchmark::Counter::kIsIterationInvariantRate);
+  bench.counters["nodes_per_second"] =
+      benchmark::Counter(double(state.x_m.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 }  // namespace
 
-BENCHMARK(BM_Substep)->Args({33, 49})->Args({65, 97})->Args({129, 193})->Unit(benchmark::kMicrosecond);
-// Terms of the default scene, in pipeline order: stretch, gravity, wind.
-BENCHMARK(BM_ForceTerm)
-    ->ArgsProduct({{65}, {97}, {0, 1, 2}})
+BENCHMARK(BM_Substep)
+    ->Args({33, 49})
+    ->Args({65, 97})
+    ->Args({129, 193})
     ->Unit(benchmark::kMicrosecond);
+// Terms of the default scene, in pipeline order: stretch, gravity, wind.
+BENCHMARK(BM_ForceTerm)->ArgsProduct({{65}, {97}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

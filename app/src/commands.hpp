@@ -10,13 +10,13 @@
 namespace flagsim::app {
 
 struct RunOptions {
-  std::string scene_path;            ///< empty: the embedded default scene
-  std::string output_path;           ///< -o; empty: output.file, else out/<name>.h5
-  std::optional<std::string> mode;   ///< --mode
-  std::optional<long long> frames;   ///< --frames
-  std::optional<long long> seed;     ///< --seed
-  std::vector<std::string> sets;     ///< --set KEY=VALUE
-  std::string render;                ///< --render
+  std::string scene_path;           ///< empty: the embedded default scene
+  std::string output_path;          ///< -o; empty: output.file, else out/<name>.h5
+  std::optional<std::string> mode;  ///< --mode
+  std::optional<long long> frames;  ///< --frames
+  std::optional<long long> seed;    ///< --seed
+  std::vector<std::string> sets;    ///< --set KEY=VALUE
+  std::string render;               ///< --render
   bool quiet = false;
 };
 

@@ -1,8 +1,8 @@
 // `flag-sim info OUT.h5`: what a run was and how it went.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <numeric>
-
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
@@ -43,7 +43,8 @@ int info_command(const std::string& path) {
   const std::vector<double> wall = reader.stat("wall_seconds");
   // Frame 0 is the initial state (no physics): leave it out of the average.
   if (wall.size() > 1) {
-    const double per_frame = std::accumulate(wall.begin() + 1, wall.end(), 0.0) / double(wall.size() - 1);
+    const double per_frame =
+        std::accumulate(wall.begin() + 1, wall.end(), 0.0) / double(wall.size() - 1);
     std::string split;
     const std::vector<std::string> names = reader.stage_names();
     const auto stages = reader.stage_seconds();

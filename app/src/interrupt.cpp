@@ -8,7 +8,9 @@ namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
 struct sigaction g_previous_int, g_previous_term;
 
-extern "C" void on_signal(int) { g_interrupted = 1; }
+extern "C" void on_signal(int) {
+  g_interrupted = 1;
+}
 
 }  // namespace
 
@@ -26,6 +28,8 @@ InterruptGuard::~InterruptGuard() {
   sigaction(SIGTERM, &g_previous_term, nullptr);
 }
 
-bool InterruptGuard::requested() { return g_interrupted != 0; }
+bool InterruptGuard::requested() {
+  return g_interrupted != 0;
+}
 
 }  // namespace flagsim::app

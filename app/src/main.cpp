@@ -1,6 +1,7 @@
 // The flag-sim command line (contract: "Command line").
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
@@ -23,7 +24,8 @@ int main(int argc, char** argv) {
   cli.require_subcommand(1);
 
   flagsim::app::RunOptions run;
-  CLI::App* run_cmd = cli.add_subcommand("run", "Simulate a scene (default: the embedded one) to HDF5");
+  CLI::App* run_cmd =
+      cli.add_subcommand("run", "Simulate a scene (default: the embedded one) to HDF5");
   run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)");
   run_cmd->add_option("-o,--output", run.output_path, "Output file (.h5)");
   run_cmd->add_option("--mode", run.mode, "Override scene.mode");
@@ -49,7 +51,8 @@ int main(int argc, char** argv) {
   // message and exit 2 rather than "unknown subcommand".
   std::vector<CLI::App*> unavailable;
   for (const char* name : {"render", "compare", "sweep"}) {
-    CLI::App* cmd = cli.add_subcommand(name, fmt::format("({} is not available in this version)", name));
+    CLI::App* cmd =
+        cli.add_subcommand(name, fmt::format("({} is not available in this version)", name));
     cmd->allow_extras();
     unavailable.push_back(cmd);
   }
@@ -73,14 +76,16 @@ int main(int argc, char** argv) {
     if (*scene_cmd) return flagsim::app::scene_command(print_default);
     for (CLI::App* cmd : unavailable)
       if (*cmd)
-        return fail(ExitCode::kBadInput,
-                    fmt::format("'{}' is not available in this version of flag-sim", cmd->get_name()));
+        return fail(
+            ExitCode::kBadInput,
+            fmt::format("'{}' is not available in this version of flag-sim", cmd->get_name()));
   } catch (const flagsim::UserError& e) {
     return fail(ExitCode::kBadInput, e.what());
   } catch (const flagsim::IoError& e) {
     return fail(ExitCode::kIoFailure, e.what());
   } catch (const std::bad_alloc&) {
-    return fail(ExitCode::kBadInput, "out of memory: the lattice or run is too large for this machine");
+    return fail(ExitCode::kBadInput,
+                "out of memory: the lattice or run is too large for this machine");
   }
   return int(ExitCode::kBadInput);
 }

@@ -1,12 +1,13 @@
 #include "progress.hpp"
 
-#include <cstdio>
-
 #include <fmt/format.h>
+
+#include <cstdio>
 
 namespace flagsim::app {
 
-Progress::Progress(bool enabled, int total_frames) : enabled_(enabled), total_frames_(total_frames) {}
+Progress::Progress(bool enabled, int total_frames)
+    : enabled_(enabled), total_frames_(total_frames) {}
 
 void Progress::update(int frame, double time_s, double ms_per_frame) {
   if (!enabled_) return;

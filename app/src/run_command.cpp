@@ -1,11 +1,10 @@
 // `flag-sim run`: scene -> solver -> frames on disk, with divergence checks,
 // interruption and the progress line.
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
-
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "flagsim/core/divergence.hpp"
@@ -100,7 +99,8 @@ int run_command(const RunOptions& options) {
     progress.update(frame, frame / scene.fps, 1000.0 * total_wall_s / (frame + 1));
     if (InterruptGuard::requested() && frame + 1 < frames) {
       status = "interrupted";
-      reason = fmt::format("signal received after frame {} (t = {:.4g} s)", frame, frame / scene.fps);
+      reason =
+          fmt::format("signal received after frame {} (t = {:.4g} s)", frame, frame / scene.fps);
       break;
     }
   }

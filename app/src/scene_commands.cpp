@@ -2,15 +2,14 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "simulation.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/scene_parser.hpp"
+#include "simulation.hpp"
 
 namespace flagsim::app {
 
 Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides) {
-  if (scene_path.empty())
-    return parse_scene(default_scene_toml(), kDefaultSceneName, overrides);
+  if (scene_path.empty()) return parse_scene(default_scene_toml(), kDefaultSceneName, overrides);
   return load_scene_file(scene_path, overrides);
 }
 
@@ -28,7 +27,8 @@ int validate_command(const std::string& scene_path) {
 }
 
 int scene_command(bool print_default) {
-  if (!print_default) throw UserError("scene: say which scene to print, e.g. flag-sim scene --default");
+  if (!print_default)
+    throw UserError("scene: say which scene to print, e.g. flag-sim scene --default");
   fmt::print("{}", default_scene_toml());
   return int(ExitCode::kSuccess);
 }

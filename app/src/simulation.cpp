@@ -29,7 +29,8 @@ class MassSpringSimulation final : public Simulation {
   std::span<const Vec3> velocities() const override { return state_.v_m_s; }
   double kinetic_energy_j() const override { return solver_.kinetic_energy(state_); }
   std::string stepping_summary() const override {
-    return fmt::format("{} substeps/frame of {:.3g} s", solver_.substeps_per_frame(), solver_.substep_s());
+    return fmt::format("{} substeps/frame of {:.3g} s", solver_.substeps_per_frame(),
+                       solver_.substep_s());
   }
 
  private:
@@ -62,7 +63,8 @@ class InfillSimulation final : public Simulation {
         mass_kg_(physics::make_cloth_model(scene).mass_kg) {
     positions_ = lattice_.rest_positions();
     if (scene.flag.initial_perturbation_m > 0.0) {
-      const auto z = physics::smooth_perturbation(lattice_, scene.seed, scene.flag.initial_perturbation_m);
+      const auto z =
+          physics::smooth_perturbation(lattice_, scene.seed, scene.flag.initial_perturbation_m);
       for (std::size_t i = 0; i < z.size(); ++i) positions_[i].z() += z[i];
     }
     velocities_.assign(positions_.size(), Vec3::Zero());
@@ -85,7 +87,8 @@ class InfillSimulation final : public Simulation {
   std::span<const Vec3> velocities() const override { return velocities_; }
   double kinetic_energy_j() const override {
     double total = 0.0;
-    for (std::size_t i = 0; i < velocities_.size(); ++i) total += 0.5 * mass_kg_[i] * velocities_[i].squaredNorm();
+    for (std::size_t i = 0; i < velocities_.size(); ++i)
+      total += 0.5 * mass_kg_[i] * velocities_[i].squaredNorm();
     return total;
   }
   std::string stepping_summary() const override {
@@ -101,7 +104,8 @@ class InfillSimulation final : public Simulation {
     const auto corners = infill::corners_at(scene_.keyframes, time_s);
     std::copy(positions_.begin(), positions_.end(), previous_.begin());
     solver_.fill(corners, positions_, times);
-    for (std::size_t i = 0; i < positions_.size(); ++i) velocities_[i] = (positions_[i] - previous_[i]) * scene_.fps;
+    for (std::size_t i = 0; i < positions_.size(); ++i)
+      velocities_[i] = (positions_[i] - previous_[i]) * scene_.fps;
   }
 
   const Scene& scene_;

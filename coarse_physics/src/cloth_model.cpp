@@ -10,13 +10,20 @@ std::vector<std::uint8_t> pinned_nodes(const Lattice& lattice, PinSet pin) {
     for (int k = 0; k < lattice.cols; ++k) {
       bool held = false;
       switch (pin) {
-        case PinSet::kLeft: held = k == 0; break;
-        case PinSet::kRight: held = k == lattice.cols - 1; break;
-        case PinSet::kTop: held = j == 0; break;
+        case PinSet::kLeft:
+          held = k == 0;
+          break;
+        case PinSet::kRight:
+          held = k == lattice.cols - 1;
+          break;
+        case PinSet::kTop:
+          held = j == 0;
+          break;
         case PinSet::kCorners:
           held = (j == 0 || j == lattice.rows - 1) && (k == 0 || k == lattice.cols - 1);
           break;
-        case PinSet::kNone: break;
+        case PinSet::kNone:
+          break;
       }
       pinned[lattice.index(j, k)] = held ? 1 : 0;
     }

@@ -9,7 +9,9 @@ namespace {
 
 // Uniform in [0, 1) from the top 53 bits: the same numbers on every standard
 // library (std::uniform_real_distribution is implementation-defined).
-double unit_uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+double unit_uniform(std::mt19937_64& rng) {
+  return double(rng() >> 11) * 0x1.0p-53;
+}
 
 }  // namespace
 

@@ -21,9 +21,11 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
 
   // The pipeline of force terms: only what the scene calls for is constructed.
   terms_.push_back(std::make_unique<StretchSprings>(model_));
-  if (scene.bending) terms_.push_back(std::make_unique<BendingSprings>(model_, scene.bending->stiffness_n_m));
+  if (scene.bending)
+    terms_.push_back(std::make_unique<BendingSprings>(model_, scene.bending->stiffness_n_m));
   if (scene.gravity)
-    terms_.push_back(std::make_unique<GravityForce>(model_.mass_kg, scene.gravity->acceleration_m_s2));
+    terms_.push_back(
+        std::make_unique<GravityForce>(model_.mass_kg, scene.gravity->acceleration_m_s2));
   if (scene.wind) {
     // Speed bound for the stability estimate: the pole's speed plus the wind
     // speed again for a flapping fly end (it can move about as fast as the wind).
@@ -63,7 +65,8 @@ ClothState SpringDamperSolver::initial_state(std::uint64_t seed) const {
   state.x_m = rest_m_;
   state.v_m_s.assign(rest_m_.size(), Vec3::Zero());
   if (flag_.initial_perturbation_m > 0.0) {
-    const std::vector<double> z = smooth_perturbation(model_.lattice, seed, flag_.initial_perturbation_m);
+    const std::vector<double> z =
+        smooth_perturbation(model_.lattice, seed, flag_.initial_perturbation_m);
     for (std::size_t i = 0; i < z.size(); ++i)
       if (!model_.pinned[i]) state.x_m[i].z() += z[i];
   }

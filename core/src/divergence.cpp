@@ -1,8 +1,8 @@
 #include "flagsim/core/divergence.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace flagsim {
 

@@ -16,21 +16,30 @@ Lattice Scene::fine_lattice() const {
 
 const char* to_string(Mode mode) {
   switch (mode) {
-    case Mode::kHybrid: return "hybrid";
-    case Mode::kMassSpring: return "mass-spring";
-    case Mode::kBullet: return "bullet";
-    case Mode::kInfill: return "infill";
+    case Mode::kHybrid:
+      return "hybrid";
+    case Mode::kMassSpring:
+      return "mass-spring";
+    case Mode::kBullet:
+      return "bullet";
+    case Mode::kInfill:
+      return "infill";
   }
   return "?";
 }
 
 const char* to_string(PinSet pin) {
   switch (pin) {
-    case PinSet::kLeft: return "left";
-    case PinSet::kRight: return "right";
-    case PinSet::kTop: return "top";
-    case PinSet::kCorners: return "corners";
-    case PinSet::kNone: return "none";
+    case PinSet::kLeft:
+      return "left";
+    case PinSet::kRight:
+      return "right";
+    case PinSet::kTop:
+      return "top";
+    case PinSet::kCorners:
+      return "corners";
+    case PinSet::kNone:
+      return "none";
   }
   return "?";
 }

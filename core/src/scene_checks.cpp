@@ -13,7 +13,8 @@ constexpr double kMaxNodes = 16'777'216.0;
 [[noreturn]] void fail_at(const TableReader& root, std::string_view dotted,
                           const std::string& message) {
   const toml::node* node = root.table().at_path(dotted).node();
-  const std::string place = node ? where_key(std::string(dotted), node->source()) : root.where_of("");
+  const std::string place =
+      node ? where_key(std::string(dotted), node->source()) : root.where_of("");
   throw UserError(fmt::format("{}: {}: {}", place, dotted, message));
 }
 
@@ -49,7 +50,8 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
     }
   }
   if (scene.mode == Mode::kHybrid && !flag.coarse)
-    scene_in.fail("mode", "hybrid mode needs flag.coarse = [Jc, Kc], the lattice the physics runs on");
+    scene_in.fail("mode",
+                  "hybrid mode needs flag.coarse = [Jc, Kc], the lattice the physics runs on");
   if (scene.pole && flag.pin == PinSet::kNone)
     fail_at(root, "pole", "a moving pole needs pinned nodes; set flag.pin (e.g. \"left\")");
   if (scene.mode == Mode::kInfill) {
@@ -63,17 +65,21 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
                                                     {root.table().contains("solver"), "solver"}};
     for (const auto& [present, table] : physics)
       if (present)
-        fail_at(root, table, "infill mode has no physics (the corners follow the keyframes); "
-                             "remove the table or choose another scene.mode");
+        fail_at(root, table,
+                "infill mode has no physics (the corners follow the keyframes); "
+                "remove the table or choose another scene.mode");
     if (flag.coarse && (*flag.coarse)[0] * (*flag.coarse)[1] != 4)
-      fail_at(root, "flag.coarse", "infill mode drives the 4 corners only: use [2, 2] or leave it out");
+      fail_at(root, "flag.coarse",
+              "infill mode drives the 4 corners only: use [2, 2] or leave it out");
   } else if (!scene.keyframes.empty()) {
-    fail_at(root, "keyframe", "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
+    fail_at(root, "keyframe",
+            "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
   } else if (scene.infill) {
     fail_at(root, "infill", "[infill] settings need a mode with the infill (\"infill\")");
   } else if (scene.wrinkles) {
-    fail_at(root, "wrinkles", "wrinkles are made by the infill (paper 3.5); they need scene.mode = "
-                              "\"infill\" (the hybrid mode is not available in this version)");
+    fail_at(root, "wrinkles",
+            "wrinkles are made by the infill (paper 3.5); they need scene.mode = "
+            "\"infill\" (the hybrid mode is not available in this version)");
   }
 }
 
@@ -87,8 +93,7 @@ void reject_unbuilt_features(const Scene& scene, const TableReader& root,
     fail_at(root, "solver.backend",
             fmt::format("\"{}\" {} (available: \"spring-damper\")", scene.solver.backend, kHint));
   const auto reject_table = [&](bool present, std::string_view dotted, std::string_view what) {
-    if (present)
-      fail_at(root, dotted, fmt::format("{} {}; remove the table", what, kHint));
+    if (present) fail_at(root, dotted, fmt::format("{} {}; remove the table", what, kHint));
   };
   reject_table(scene.wind && scene.wind->gusts, "wind.gusts", "gusting wind");
   reject_table(scene.wind && scene.wind->turbulence, "wind.turbulence", "turbulent wind");

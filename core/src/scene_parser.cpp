@@ -1,12 +1,12 @@
 #include "flagsim/core/scene_parser.hpp"
 
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include "flagsim/core/errors.hpp"
 #include "scene_checks.hpp"
@@ -24,18 +24,53 @@ constexpr long long kMaxLatticeSide = 8193;
 constexpr long long kMaxFrames = 10'000'000;
 
 // Every key of the schema, for "did you mean" across tables.
-constexpr std::string_view kAllKeys[] = {
-    "scene.name", "scene.mode", "scene.duration", "scene.fps", "scene.seed", "scene.frames",
-    "flag.size", "flag.origin", "flag.fine", "flag.coarse", "flag.areal_density",
-    "flag.stretch_modulus", "flag.shear_modulus", "flag.damping", "flag.pin",
-    "flag.initial_perturbation", "pole.motion",
-    "pole.axis", "pole.amplitude", "pole.frequency", "gravity.acceleration", "wind.velocity",
-    "wind.drag", "wind.lift", "wind.air_density", "wind.gusts", "wind.turbulence",
-    "bending.stiffness", "wrinkles.fiber_radius", "wrinkles.fiber_modulus", "wrinkles.k_prime",
-    "wrinkles.tolerance", "wrinkles.rounds", "infill.relax_iterations", "solver.backend",
-    "solver.substeps", "solver.iterations", "keyframe.time", "keyframe.corners", "output.file",
-    "output.every", "output.flush_every", "render.style", "render.size", "render.texture",
-    "limits.max_strain", "limits.max_speed"};
+constexpr std::string_view kAllKeys[] = {"scene.name",
+                                         "scene.mode",
+                                         "scene.duration",
+                                         "scene.fps",
+                                         "scene.seed",
+                                         "scene.frames",
+                                         "flag.size",
+                                         "flag.origin",
+                                         "flag.fine",
+                                         "flag.coarse",
+                                         "flag.areal_density",
+                                         "flag.stretch_modulus",
+                                         "flag.shear_modulus",
+                                         "flag.damping",
+                                         "flag.pin",
+                                         "flag.initial_perturbation",
+                                         "pole.motion",
+                                         "pole.axis",
+                                         "pole.amplitude",
+                                         "pole.frequency",
+                                         "gravity.acceleration",
+                                         "wind.velocity",
+                                         "wind.drag",
+                                         "wind.lift",
+                                         "wind.air_density",
+                                         "wind.gusts",
+                                         "wind.turbulence",
+                                         "bending.stiffness",
+                                         "wrinkles.fiber_radius",
+                                         "wrinkles.fiber_modulus",
+                                         "wrinkles.k_prime",
+                                         "wrinkles.tolerance",
+                                         "wrinkles.rounds",
+                                         "infill.relax_iterations",
+                                         "solver.backend",
+                                         "solver.substeps",
+                                         "solver.iterations",
+                                         "keyframe.time",
+                                         "keyframe.corners",
+                                         "output.file",
+                                         "output.every",
+                                         "output.flush_every",
+                                         "render.style",
+                                         "render.size",
+                                         "render.texture",
+                                         "limits.max_strain",
+                                         "limits.max_speed"};
 
 std::string trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t");
@@ -98,7 +133,8 @@ PinSet parse_pin(const std::string& text) {
 void read_scene_table(TableReader& in, Scene& scene, std::string_view source_path) {
   std::string stem = std::filesystem::path(std::string(source_path)).stem().string();
   scene.name = in.string("name", stem.empty() ? "scene" : stem);
-  scene.mode = parse_mode(in.choice("mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "infill"}));
+  scene.mode =
+      parse_mode(in.choice("mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "infill"}));
   scene.fps = in.real("fps", 30.0, Bound{0.0, 10000.0, true}, "frames per second");
   scene.duration_s = in.real("duration", 10.0, Bound::positive(), "s");
   if (auto frames = in.optional_integer("frames", 1, kMaxFrames))
@@ -110,8 +146,8 @@ void read_scene_table(TableReader& in, Scene& scene, std::string_view source_pat
 }
 
 void read_flag_table(TableReader& in, FlagSpec& flag) {
-  const auto size = in.real_pair("size", {flag.width_m, flag.height_m},
-                                 Bound{0.0, 1.0e4, true}, "[w, h] in m");
+  const auto size =
+      in.real_pair("size", {flag.width_m, flag.height_m}, Bound{0.0, 1.0e4, true}, "[w, h] in m");
   flag.width_m = size[0];
   flag.height_m = size[1];
   flag.origin_m = in.vec3("origin", flag.origin_m, "m");
@@ -120,16 +156,17 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
     flag.fine_cols = (*fine)[1];
   }
   flag.coarse = in.int_pair("coarse", 2, kMaxLatticeSide, "[Jc, Kc] nodes");
-  flag.areal_density_kg_m2 = in.real("areal_density", flag.areal_density_kg_m2,
-                                     Bound{0.0, 1.0e4, true}, "kg/m^2");
-  flag.stretch_modulus_n_m = in.real("stretch_modulus", flag.stretch_modulus_n_m,
-                                     Bound{0.0, 1.0e12, true}, "N/m");
+  flag.areal_density_kg_m2 =
+      in.real("areal_density", flag.areal_density_kg_m2, Bound{0.0, 1.0e4, true}, "kg/m^2");
+  flag.stretch_modulus_n_m =
+      in.real("stretch_modulus", flag.stretch_modulus_n_m, Bound{0.0, 1.0e12, true}, "N/m");
   // Default shear stiffness: a tenth of the stretch stiffness, loosely woven cloth.
-  flag.shear_modulus_n_m = in.real("shear_modulus", flag.stretch_modulus_n_m / 10.0,
-                                   Bound{0.0, 1.0e12, false}, "N/m");
+  flag.shear_modulus_n_m =
+      in.real("shear_modulus", flag.stretch_modulus_n_m / 10.0, Bound{0.0, 1.0e12, false}, "N/m");
   flag.damping_per_s = in.real("damping", flag.damping_per_s, Bound{0.0, 1.0e6, false}, "1/s");
   flag.pin = parse_pin(in.choice("pin", "left", {"left", "right", "top", "corners", "none"}));
-  flag.initial_perturbation_m = in.real("initial_perturbation", 0.0, Bound::between(0.0, 1.0e3), "m");
+  flag.initial_perturbation_m =
+      in.real("initial_perturbation", 0.0, Bound::between(0.0, 1.0e3), "m");
 }
 
 void read_effect_tables(TableReader& root, Scene& scene) {
@@ -158,8 +195,8 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     wind.velocity_m_s = in.vec3("velocity", wind.velocity_m_s, "m/s");
     wind.drag = in.real("drag", wind.drag, Bound::between(0.0, 100.0), "");
     wind.lift = in.real("lift", wind.lift, Bound::between(0.0, 100.0), "");
-    wind.air_density_kg_m3 = in.real("air_density", wind.air_density_kg_m3,
-                                     Bound{0.0, 1.0e4, true}, "kg/m^3");
+    wind.air_density_kg_m3 =
+        in.real("air_density", wind.air_density_kg_m3, Bound{0.0, 1.0e4, true}, "kg/m^3");
     if (const toml::table* g = in.subtable("gusts")) {
       TableReader gin(*g, "wind.gusts", in.where_of("gusts"));
       wind.gusts = Gusts{gin.real("amplitude", 0.2, Bound::between(0.0, 10.0), "(fraction)"),
@@ -212,7 +249,9 @@ void read_infill_tables(TableReader& root, Scene& scene) {
       in.allow("corners");
       const toml::array* array = corners ? corners->as_array() : nullptr;
       if (!array || array->size() != 4)
-        in.fail("corners", "expected 4 corners [[x,y,z], ...] in the order (0,0), (0,K-1), (J-1,0), (J-1,K-1)");
+        in.fail(
+            "corners",
+            "expected 4 corners [[x,y,z], ...] in the order (0,0), (0,K-1), (J-1,0), (J-1,K-1)");
       for (int c = 0; c < 4; ++c) {
         toml::table holder;
         holder.insert("corner", *array->get(c));
@@ -300,8 +339,8 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_path,
   try {
     root = toml::parse(toml_text, source_path);
   } catch (const toml::parse_error& error) {
-    throw UserError(fmt::format("{}: invalid TOML: {}", detail::where(error.source()),
-                                error.description()));
+    throw UserError(
+        fmt::format("{}: invalid TOML: {}", detail::where(error.source()), error.description()));
   }
   std::vector<std::pair<std::string, std::string>> labels;
   for (const std::string& assignment : overrides)

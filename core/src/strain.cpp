@@ -26,7 +26,8 @@ StrainStats link_strain(const Lattice& lattice, std::span<const Vec3> positions_
     }
   }
   const double links = double(rows) * (cols - 1) + double(rows - 1) * cols;
-  if (!finite) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  if (!finite)
+    return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
   return {max_strain, sum / links};
 }
 

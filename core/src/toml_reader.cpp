@@ -1,9 +1,9 @@
 #include "toml_reader.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "flagsim/core/errors.hpp"
 #include "near_miss.hpp"
@@ -22,7 +22,9 @@ std::string describe(const toml::node& node) {
   return text;
 }
 
-std::string format_number(double x) { return fmt::format("{:g}", x); }
+std::string format_number(double x) {
+  return fmt::format("{:g}", x);
+}
 
 }  // namespace
 
@@ -62,7 +64,8 @@ std::string where_key(const std::string& key, const toml::source_region& source)
 std::string Bound::describe() const {
   const bool low_set = low > -1e299, high_set = high < 1e299;
   if (low_set && high_set)
-    return fmt::format("in {}{}, {}]", low_open ? "(" : "[", format_number(low), format_number(high));
+    return fmt::format("in {}{}, {}]", low_open ? "(" : "[", format_number(low),
+                       format_number(high));
   if (low_set) return fmt::format("{} {}", low_open ? ">" : ">=", format_number(low));
   if (high_set) return fmt::format("<= {}", format_number(high));
   return "finite";
@@ -87,8 +90,9 @@ void TableReader::fail(std::string_view key, const std::string& message) const {
 
 void TableReader::expected(std::string_view key, const toml::node& node,
                            const std::string& what) const {
-  throw UserError(fmt::format("{}: {}: expected {}, got {}", where_key(key_name(key), node.source()), key_name(key),
-                              what, describe(node)));
+  throw UserError(fmt::format("{}: {}: expected {}, got {}",
+                              where_key(key_name(key), node.source()), key_name(key), what,
+                              describe(node)));
 }
 
 const toml::node* TableReader::lookup(std::string_view key) {
@@ -140,7 +144,8 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
                                 std::vector<std::string_view> choices) {
   const toml::node* node = lookup(key);
   std::string listed;
-  for (std::string_view c : choices) listed += fmt::format("{}\"{}\"", listed.empty() ? "" : ", ", c);
+  for (std::string_view c : choices)
+    listed += fmt::format("{}\"{}\"", listed.empty() ? "" : ", ", c);
   const std::string what = "one of " + listed;
   if (!node) return fallback;
   if (!node->is_string()) expected(key, *node, what);
@@ -148,8 +153,8 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
   for (std::string_view c : choices)
     if (value == c) return value;
   const std::string guess = closest_name(value, choices);
-  throw UserError(fmt::format("{}: {}: expected {}, got \"{}\"{}", where_key(key_name(key), node->source()),
-                              key_name(key), what, value,
+  throw UserError(fmt::format("{}: {}: expected {}, got \"{}\"{}",
+                              where_key(key_name(key), node->source()), key_name(key), what, value,
                               guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
 }
 
@@ -226,7 +231,8 @@ void TableReader::finish(std::span<const std::string_view> elsewhere) const {
       const auto dot = full.rfind('.');
       if (dot != std::string_view::npos && full.substr(dot + 1) == name) guess = full;
     }
-    throw UserError(fmt::format("{}: unknown key '{}'{}", where_key(key_name(name), key.source()), key_name(name),
+    throw UserError(fmt::format("{}: unknown key '{}'{}", where_key(key_name(name), key.source()),
+                                key_name(name),
                                 guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
   }
 }

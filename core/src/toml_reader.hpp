@@ -2,6 +2,8 @@
 // Typed, range-checked reads from one TOML table, each marking its key as known,
 // so that finish() can reject the keys nobody read (unknown or misspelt).
 // Every failure throws UserError "FILE:LINE:COL: KEY: expected ..., got ...".
+#include <toml++/toml.h>
+
 #include <array>
 #include <optional>
 #include <span>
@@ -9,8 +11,6 @@
 #include <string_view>
 #include <utility>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "flagsim/core/vec3.hpp"
 
@@ -71,11 +71,11 @@ class TableReader {
   /// [x, y, z] of finite numbers.
   Vec3 vec3(std::string_view key, const Vec3& fallback, std::string_view unit);
   /// [a, b] of numbers inside `bound`.
-  std::array<double, 2> real_pair(std::string_view key, std::array<double, 2> fallback,
-                                  Bound bound, std::string_view what);
+  std::array<double, 2> real_pair(std::string_view key, std::array<double, 2> fallback, Bound bound,
+                                  std::string_view what);
   /// [a, b] of integers in [low, high].
-  std::optional<std::array<int, 2>> int_pair(std::string_view key, long long low,
-                                             long long high, std::string_view what);
+  std::optional<std::array<int, 2>> int_pair(std::string_view key, long long low, long long high,
+                                             std::string_view what);
   /// The sub-table at `key`, if present (must be a table).
   const toml::table* subtable(std::string_view key);
   /// Marks a key as known without reading it (it is read elsewhere).

@@ -1,10 +1,10 @@
 #include "flagsim/data/frame_writer.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-
-#include <fmt/format.h>
 
 #include "flagsim/core/errors.hpp"
 #include "h5_handle.hpp"
@@ -27,12 +27,13 @@ h5::Handle make_series(hid_t parent, const char* name, hid_t element_type,
     row *= d;
   }
   if (row < 64) chunk[0] = 256;
-  h5::Handle space = h5::dataspace(H5Screate_simple(int(dims.size()), dims.data(), max_dims.data()));
+  h5::Handle space =
+      h5::dataspace(H5Screate_simple(int(dims.size()), dims.data(), max_dims.data()));
   h5::Handle props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_chunk(props.get(), int(chunk.size()), chunk.data());
   H5Pset_obj_track_times(props.get(), false);  // no timestamps: same input, same bytes
-  return h5::dataset(H5Dcreate2(parent, name, element_type, space.get(), H5P_DEFAULT, props.get(),
-                                H5P_DEFAULT));
+  return h5::dataset(
+      H5Dcreate2(parent, name, element_type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT));
 }
 
 h5::Handle make_group(hid_t parent, const char* name) {
@@ -53,9 +54,11 @@ bool append_row(hid_t dataset, hsize_t index, hid_t memory_type, const void* dat
   std::vector<hsize_t> start(std::size_t(rank), 0), count = dims;
   start[0] = index;
   count[0] = 1;
-  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                      nullptr);
   h5::Handle memory_space = h5::dataspace(H5Screate_simple(rank, count.data(), nullptr));
-  return H5Dwrite(dataset, memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, data) >= 0;
+  return H5Dwrite(dataset, memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, data) >=
+         0;
 }
 
 }  // namespace
@@ -71,7 +74,9 @@ struct FrameWriter::Impl {
 
 FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo& info,
                          int flush_every)
-    : impl_(std::make_unique<Impl>()), path_(std::move(path)), lattice_(lattice),
+    : impl_(std::make_unique<Impl>()),
+      path_(std::move(path)),
+      lattice_(lattice),
       flush_every_(flush_every) {
   h5::silence_library_errors();
   const fs::path target(path_);
@@ -86,14 +91,15 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   H5Pset_obj_track_times(create.get(), false);
   impl_->file = h5::file(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, create.get(), H5P_DEFAULT));
   if (!impl_->file.valid())
-    throw UserError(fmt::format("{}: cannot create the output file (is the directory writable?)",
-                                path_));
+    throw UserError(
+        fmt::format("{}: cannot create the output file (is the directory writable?)", path_));
 
   const hid_t root = impl_->file.get();
   bool ok = h5::write_string_attribute(root, "format", kFormat) &&
             h5::write_string_attribute(root, "status", "running") &&
             h5::write_string_attribute(root, "mode", info.mode) &&
-            h5::write_string_attribute(root, "effects", fmt::format("{}", fmt::join(info.effects, ","))) &&
+            h5::write_string_attribute(root, "effects",
+                                       fmt::format("{}", fmt::join(info.effects, ","))) &&
             h5::write_string_attribute(root, "scene", info.scene_toml) &&
             h5::write_string_attribute(root, "version", info.version) &&
             h5::write_int_attribute(root, "seed", (long long)info.seed);
@@ -110,7 +116,8 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   impl_->mean_strain = make_series(stats.get(), "mean_strain", H5T_IEEE_F32LE, {});
   impl_->stage_count = info.stages.size();
   impl_->output_stage = info.output_stage;
-  impl_->stage_seconds = make_series(stats.get(), "stage_seconds", H5T_IEEE_F64LE, {impl_->stage_count});
+  impl_->stage_seconds =
+      make_series(stats.get(), "stage_seconds", H5T_IEEE_F64LE, {impl_->stage_count});
   impl_->wall_seconds = make_series(stats.get(), "wall_seconds", H5T_IEEE_F64LE, {});
   impl_->kinetic = make_series(stats.get(), "kinetic_energy", H5T_IEEE_F64LE, {});
   ok = ok && h5::write_string_list_attribute(impl_->stage_seconds.get(), "stages", info.stages);
@@ -120,8 +127,9 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   h5::Handle rest_space = h5::dataspace(H5Screate_simple(3, rest_dims, nullptr));
   h5::Handle rest_props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_obj_track_times(rest_props.get(), false);
-  h5::Handle rest = h5::dataset(H5Dcreate2(lattice_group.get(), "rest_positions", H5T_IEEE_F32LE,
-                                           rest_space.get(), H5P_DEFAULT, rest_props.get(), H5P_DEFAULT));
+  h5::Handle rest =
+      h5::dataset(H5Dcreate2(lattice_group.get(), "rest_positions", H5T_IEEE_F32LE,
+                             rest_space.get(), H5P_DEFAULT, rest_props.get(), H5P_DEFAULT));
   std::vector<float>& buffer = impl_->position_buffer;
   buffer.resize(lattice.node_count() * 3);
   const std::vector<Vec3> rest_positions = lattice.rest_positions();
@@ -150,7 +158,8 @@ void FrameWriter::write_frame(double time_s, std::span<const Vec3> positions_m,
             append_row(impl_->positions.get(), index, H5T_NATIVE_FLOAT, buffer.data());
   std::vector<double> stage_row(stats.stage_seconds.begin(), stats.stage_seconds.end());
   stage_row.resize(impl_->stage_count, 0.0);
-  const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double write_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (impl_->output_stage >= 0 && std::size_t(impl_->output_stage) < stage_row.size())
     stage_row[std::size_t(impl_->output_stage)] += write_s;
   const float max_strain = float(stats.max_strain), mean_strain = float(stats.mean_strain);
@@ -161,7 +170,8 @@ void FrameWriter::write_frame(double time_s, std::span<const Vec3> positions_m,
         append_row(impl_->stage_seconds.get(), index, H5T_NATIVE_DOUBLE, stage_row.data())) &&
        append_row(impl_->wall_seconds.get(), index, H5T_NATIVE_DOUBLE, &wall_s) &&
        append_row(impl_->kinetic.get(), index, H5T_NATIVE_DOUBLE, &stats.kinetic_energy_j);
-  if (!ok) throw IoError(fmt::format("{}: writing frame {} failed (disk full?)", partial_path(), frames_));
+  if (!ok)
+    throw IoError(fmt::format("{}: writing frame {} failed (disk full?)", partial_path(), frames_));
   ++frames_;
   impl_->times.push_back(time_s);
   if (frames_ % flush_every_ == 0 && H5Fflush(impl_->file.get(), H5F_SCOPE_GLOBAL) < 0)
@@ -178,7 +188,8 @@ void FrameWriter::finish(const std::string& status, const std::string& reason) {
   if (!ok) throw IoError(fmt::format("{}: finishing the output file failed", partial_path()));
   std::error_code ec;
   fs::rename(partial_path(), path_, ec);
-  if (ec) throw IoError(fmt::format("{}: cannot rename to {}: {}", partial_path(), path_, ec.message()));
+  if (ec)
+    throw IoError(fmt::format("{}: cannot rename to {}: {}", partial_path(), path_, ec.message()));
 
   fs::path sidecar(path_);
   sidecar.replace_extension(".xdmf");

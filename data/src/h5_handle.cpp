@@ -4,7 +4,9 @@
 
 namespace flagsim::data::h5 {
 
-void silence_library_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void silence_library_errors() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
 Handle utf8_string_type() {
   Handle type = datatype(H5Tcopy(H5T_C_S1));

@@ -39,13 +39,27 @@ class Handle {
   Closer closer_ = nullptr;
 };
 
-inline Handle file(hid_t id) { return {id, H5Fclose}; }
-inline Handle group(hid_t id) { return {id, H5Gclose}; }
-inline Handle dataset(hid_t id) { return {id, H5Dclose}; }
-inline Handle dataspace(hid_t id) { return {id, H5Sclose}; }
-inline Handle attribute(hid_t id) { return {id, H5Aclose}; }
-inline Handle datatype(hid_t id) { return {id, H5Tclose}; }
-inline Handle plist(hid_t id) { return {id, H5Pclose}; }
+inline Handle file(hid_t id) {
+  return {id, H5Fclose};
+}
+inline Handle group(hid_t id) {
+  return {id, H5Gclose};
+}
+inline Handle dataset(hid_t id) {
+  return {id, H5Dclose};
+}
+inline Handle dataspace(hid_t id) {
+  return {id, H5Sclose};
+}
+inline Handle attribute(hid_t id) {
+  return {id, H5Aclose};
+}
+inline Handle datatype(hid_t id) {
+  return {id, H5Tclose};
+}
+inline Handle plist(hid_t id) {
+  return {id, H5Pclose};
+}
 
 /// Silences HDF5's own error stack printing: we report errors ourselves.
 void silence_library_errors();

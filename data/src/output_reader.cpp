@@ -1,8 +1,8 @@
 #include "flagsim/data/output_reader.hpp"
 
-#include <filesystem>
-
 #include <fmt/format.h>
+
+#include <filesystem>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/data/frame_writer.hpp"
@@ -17,7 +17,8 @@ struct OutputReader::Impl {
 namespace {
 
 // Reads a whole numeric dataset as double; empty if missing.
-std::vector<double> read_all(hid_t file, const char* path, std::vector<hsize_t>* dims_out = nullptr) {
+std::vector<double> read_all(hid_t file, const char* path,
+                             std::vector<hsize_t>* dims_out = nullptr) {
   if (H5Lexists(file, path, H5P_DEFAULT) <= 0) return {};
   h5::Handle set = h5::dataset(H5Dopen2(file, path, H5P_DEFAULT));
   h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
@@ -27,7 +28,8 @@ std::vector<double> read_all(hid_t file, const char* path, std::vector<hsize_t>*
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
   std::vector<double> values(count);
-  if (count > 0 && H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+  if (count > 0 &&
+      H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
     values.clear();
   if (dims_out) *dims_out = dims;
   return values;
@@ -51,11 +53,14 @@ OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Imp
     throw UserError(fmt::format("{}: not an HDF5 file (expected a flag-sim output .h5)", path));
   impl_->file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!impl_->file.valid())
-    throw UserError(fmt::format("{}: cannot open the HDF5 file (is it still being written?)", path));
+    throw UserError(
+        fmt::format("{}: cannot open the HDF5 file (is it still being written?)", path));
   std::string format;
   if (!h5::read_string_attribute(impl_->file.get(), "format", format) || format != kFormat)
-    throw UserError(fmt::format("{}: not a flag-sim output (root attribute format is \"{}\", "
-                                "expected \"{}\")", path, format, kFormat));
+    throw UserError(
+        fmt::format("{}: not a flag-sim output (root attribute format is \"{}\", "
+                    "expected \"{}\")",
+                    path, format, kFormat));
   const hid_t file = impl_->file.get();
   if (H5Lexists(file, "/frames", H5P_DEFAULT) <= 0 ||
       H5Lexists(file, "/frames/positions", H5P_DEFAULT) <= 0)
@@ -90,7 +95,9 @@ long long OutputReader::seed() const {
   return value;
 }
 
-std::vector<double> OutputReader::times_s() const { return read_all(impl_->file.get(), "/frames/time"); }
+std::vector<double> OutputReader::times_s() const {
+  return read_all(impl_->file.get(), "/frames/time");
+}
 
 std::vector<Vec3> OutputReader::positions(int frame) const {
   h5::Handle set = h5::dataset(H5Dopen2(impl_->file.get(), "/frames/positions", H5P_DEFAULT));
@@ -101,7 +108,8 @@ std::vector<Vec3> OutputReader::positions(int frame) const {
   h5::Handle memory = h5::dataspace(H5Screate_simple(4, count, nullptr));
   std::vector<double> flat(std::size_t(rows_) * cols_ * 3);
   if (frame < 0 || frame >= frames_ ||
-      H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT, flat.data()) < 0)
+      H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT,
+              flat.data()) < 0)
     throw UserError(fmt::format("{}: cannot read frame {}", path_, frame));
   return to_vec3(flat);
 }

@@ -16,7 +16,8 @@ void move_edge(const Fiber& fiber, std::ptrdiff_t before_node, std::ptrdiff_t af
   // Uniform Catmull-Rom through p_before, p0, p1, p_after; a missing neighbour
   // is the straight continuation of the edge.
   const Vec3 p0 = positions_m[fiber.node(0)], p1 = positions_m[fiber.node(fiber.segments)];
-  const Vec3 before = before_node >= 0 ? positions_m[std::size_t(before_node)] : Vec3(2.0 * p0 - p1);
+  const Vec3 before =
+      before_node >= 0 ? positions_m[std::size_t(before_node)] : Vec3(2.0 * p0 - p1);
   const Vec3 after = after_node >= 0 ? positions_m[std::size_t(after_node)] : Vec3(2.0 * p1 - p0);
   const Vec3 m0 = 0.5 * (p1 - before), m1 = 0.5 * (after - p0);  // tangents per cell
   for (int i = 1; i < fiber.segments; ++i) {

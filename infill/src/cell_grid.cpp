@@ -15,7 +15,8 @@ CellGrid CellGrid::of(const Lattice& fine, int coarse_rows, int coarse_cols) {
 
 double Fiber::length_m(std::span<const Vec3> positions_m) const {
   double length = 0.0;
-  for (int i = 0; i < segments; ++i) length += (positions_m[node(i + 1)] - positions_m[node(i)]).norm();
+  for (int i = 0; i < segments; ++i)
+    length += (positions_m[node(i + 1)] - positions_m[node(i)]).norm();
   return length;
 }
 

@@ -4,16 +4,20 @@
 #include <cmath>
 #include <optional>
 
-#include "flagsim/infill/relax.hpp"
 #include "flagsim/infill/boundary.hpp"
 #include "flagsim/infill/initial_move.hpp"
 #include "flagsim/infill/length_search.hpp"
+#include "flagsim/infill/relax.hpp"
 
 namespace flagsim::infill {
 
 InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps,
                            std::optional<WrinkleParams> wrinkles, int rounds)
-    : lattice_(fine), grid_(grid), relax_sweeps_(relax_sweeps), wrinkles_(wrinkles), rounds_(rounds) {
+    : lattice_(fine),
+      grid_(grid),
+      relax_sweeps_(relax_sweeps),
+      wrinkles_(wrinkles),
+      rounds_(rounds) {
   const int rs = grid.row_stride, cs = grid.col_stride, cols = fine.cols;
   held_.assign(fine.node_count(), 0);
   for (int jc = 0; jc < grid.coarse_rows; ++jc) {
@@ -26,18 +30,22 @@ InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_
         return std::ptrdiff_t(grid.dense_index(fine, j, k));
       };
       if (kc + 1 < grid.coarse_cols && cs > 1)
-        edges_.push_back({{n, 1, cs, fine.spacing_x_m}, coarse_at(jc, kc - 1), coarse_at(jc, kc + 2)});
+        edges_.push_back(
+            {{n, 1, cs, fine.spacing_x_m}, coarse_at(jc, kc - 1), coarse_at(jc, kc + 2)});
       if (jc + 1 < grid.coarse_rows && rs > 1)
-        edges_.push_back({{n, cols, rs, fine.spacing_y_m}, coarse_at(jc - 1, kc), coarse_at(jc + 2, kc)});
+        edges_.push_back(
+            {{n, cols, rs, fine.spacing_y_m}, coarse_at(jc - 1, kc), coarse_at(jc + 2, kc)});
     }
   }
   for (int jc = 0; jc + 1 < grid.coarse_rows; ++jc) {
     for (int kc = 0; kc + 1 < grid.coarse_cols; ++kc) {
       const int j0 = jc * rs, k0 = kc * cs;
       if (cs > 1)
-        for (int j = j0 + 1; j < j0 + rs; ++j) cell_rows_.push_back({fine.index(j, k0), 1, cs, fine.spacing_x_m});
+        for (int j = j0 + 1; j < j0 + rs; ++j)
+          cell_rows_.push_back({fine.index(j, k0), 1, cs, fine.spacing_x_m});
       if (rs > 1)
-        for (int k = k0 + 1; k < k0 + cs; ++k) cell_cols_.push_back({fine.index(j0, k), cols, rs, fine.spacing_y_m});
+        for (int k = k0 + 1; k < k0 + cs; ++k)
+          cell_cols_.push_back({fine.index(j0, k), cols, rs, fine.spacing_y_m});
     }
   }
   previous_.resize(fine.node_count());
@@ -75,11 +83,14 @@ void InfillSolver::rewrinkle(std::span<Vec3> positions_m) {
   // except lone edges (corners only), which get the same treatment first.
   for (const Edge& edge : edges_)
     if (edge.before < 0 && edge.after < 0)
-      rewrinkle_fiber(edge.fiber, positions_m, cell_normal(cell_corner_of(edge.fiber.first), positions_m), *wrinkles_);
+      rewrinkle_fiber(edge.fiber, positions_m,
+                      cell_normal(cell_corner_of(edge.fiber.first), positions_m), *wrinkles_);
   for (const Fiber& row : cell_rows_)
-    rewrinkle_fiber(row, positions_m, cell_normal(cell_corner_of(row.first), positions_m), *wrinkles_);
+    rewrinkle_fiber(row, positions_m, cell_normal(cell_corner_of(row.first), positions_m),
+                    *wrinkles_);
   for (const Fiber& col : cell_cols_)
-    rewrinkle_fiber(col, positions_m, cell_normal(cell_corner_of(col.first), positions_m), *wrinkles_);
+    rewrinkle_fiber(col, positions_m, cell_normal(cell_corner_of(col.first), positions_m),
+                    *wrinkles_);
 }
 
 void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
@@ -89,15 +100,16 @@ void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
     coarse_start_[c] = positions_m[coarse_dense_[c]];
     largest_motion = std::max(largest_motion, (coarse_m[c] - coarse_start_[c]).norm());
   }
-  const double cell_side = std::min(grid_.row_stride * lattice_.spacing_y_m,
-                                    grid_.col_stride * lattice_.spacing_x_m);
+  const double cell_side =
+      std::min(grid_.row_stride * lattice_.spacing_y_m, grid_.col_stride * lattice_.spacing_x_m);
   const int steps = std::max(1, int(std::ceil(largest_motion / (kMaxStepFraction * cell_side))));
   last_steps_ = steps;
   last_sweeps_ = 0;
   for (int s = 1; s <= steps; ++s) {
     const double t = double(s) / steps;
     for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
-      coarse_step_[c] = s == steps ? coarse_m[c] : Vec3(coarse_start_[c] + t * (coarse_m[c] - coarse_start_[c]));
+      coarse_step_[c] =
+          s == steps ? coarse_m[c] : Vec3(coarse_start_[c] + t * (coarse_m[c] - coarse_start_[c]));
     deform(coarse_step_, positions_m, times);
   }
 }
@@ -114,7 +126,8 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
   };
   std::copy(positions_m.begin(), positions_m.end(), previous_.begin());
   timed(0, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
-    for (std::size_t c = 0; c < coarse_dense_.size(); ++c) positions_m[coarse_dense_[c]] = coarse_target_m[c];
+    for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
+      positions_m[coarse_dense_[c]] = coarse_target_m[c];
     for (const Edge& edge : edges_) {
       move_edge(edge.fiber, edge.before, edge.after, positions_m, previous_, kLengthTolerance);
       relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
@@ -122,8 +135,10 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
   });
   timed(1, [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2
   timed(2, [&] {  // 3.3: rows, then columns
-    for (const Fiber& row : cell_rows_) length_search(row, positions_m, previous_, kLengthTolerance);
-    for (const Fiber& col : cell_cols_) length_search(col, positions_m, previous_, kLengthTolerance);
+    for (const Fiber& row : cell_rows_)
+      length_search(row, positions_m, previous_, kLengthTolerance);
+    for (const Fiber& col : cell_cols_)
+      length_search(col, positions_m, previous_, kLengthTolerance);
   });
   timed(3, [&] {  // 3.4
     last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);

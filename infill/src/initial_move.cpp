@@ -4,7 +4,9 @@
 
 namespace flagsim::infill {
 
-double end_weight(double s) { return std::abs(1.0 - 2.0 * s); }
+double end_weight(double s) {
+  return std::abs(1.0 - 2.0 * s);
+}
 
 Vec3 interpolated_motion(const Fiber& fiber, double s, std::span<const Vec3> positions_m,
                          std::span<const Vec3> previous_m) {
@@ -17,7 +19,8 @@ void weighted_initial_move(const Fiber& fiber, std::span<Vec3> positions_m,
   for (int i = 1; i < fiber.segments; ++i) {
     const double s = double(i) / fiber.segments;
     const std::size_t n = fiber.node(i);
-    positions_m[n] = previous_m[n] + end_weight(s) * interpolated_motion(fiber, s, positions_m, previous_m);
+    positions_m[n] =
+        previous_m[n] + end_weight(s) * interpolated_motion(fiber, s, positions_m, previous_m);
   }
 }
 
@@ -36,10 +39,12 @@ void initial_move_cells(const Lattice& lattice, const CellGrid& grid, std::span<
         for (int k = k0 + 1; k < k0 + cs; ++k) {
           const double s_row = double(k - k0) / cs;
           const Vec3 along_row = (1.0 - s_row) * left + s_row * right;
-          const Vec3 along_col = (1.0 - s_col) * motion(lattice.index(j0, k)) + s_col * motion(lattice.index(j0 + rs, k));
+          const Vec3 along_col = (1.0 - s_col) * motion(lattice.index(j0, k)) +
+                                 s_col * motion(lattice.index(j0 + rs, k));
           const std::size_t n = lattice.index(j, k);
           // 3.2: each interpolated motion times its weight, the two averaged.
-          positions_m[n] = previous_m[n] + 0.5 * (end_weight(s_row) * along_row + end_weight(s_col) * along_col);
+          positions_m[n] =
+              previous_m[n] + 0.5 * (end_weight(s_row) * along_row + end_weight(s_col) * along_col);
         }
       }
     }

@@ -13,7 +13,8 @@ std::array<Vec3, 4> corners_at(std::span<const Keyframe> keyframes, double time_
     if (time_s <= after.time_s) {
       const double s = (time_s - before.time_s) / (after.time_s - before.time_s);
       std::array<Vec3, 4> corners;
-      for (int c = 0; c < 4; ++c) corners[c] = (1.0 - s) * before.corners_m[c] + s * after.corners_m[c];
+      for (int c = 0; c < 4; ++c)
+        corners[c] = (1.0 - s) * before.corners_m[c] + s * after.corners_m[c];
       return corners;
     }
   }

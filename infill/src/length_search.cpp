@@ -26,7 +26,8 @@ double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
   bb.resize(n);
   for (int i = 1; i < fiber.segments; ++i) {
     const std::size_t node = fiber.node(i);
-    const Vec3 target = previous_m[node] + interpolated_motion(fiber, double(i) / fiber.segments, positions_m, previous_m);
+    const Vec3 target = previous_m[node] + interpolated_motion(fiber, double(i) / fiber.segments,
+                                                               positions_m, previous_m);
     step[std::size_t(i)] = target - positions_m[node];
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -38,7 +39,8 @@ double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
   }
   auto length_at = [&](double t) {
     double total = 0.0;
-    for (std::size_t i = 0; i < n; ++i) total += std::sqrt(std::max(0.0, aa[i] + t * (2.0 * ab[i] + t * bb[i])));
+    for (std::size_t i = 0; i < n; ++i)
+      total += std::sqrt(std::max(0.0, aa[i] + t * (2.0 * ab[i] + t * bb[i])));
     return total;
   };
   int best = 0;

@@ -9,9 +9,10 @@ int relax_fiber(const Fiber& fiber, std::span<Vec3> positions_m, int max_sweeps,
   for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
     double worst = 0.0;
     for (int i = 0; i < fiber.segments; ++i) {
-      worst = std::max(worst, project_link(positions_m[fiber.node(i)], positions_m[fiber.node(i + 1)],
-                                           i == 0, i + 1 == fiber.segments, fiber.rest_spacing_m,
-                                           1.0 / fiber.rest_spacing_m));
+      worst =
+          std::max(worst, project_link(positions_m[fiber.node(i)], positions_m[fiber.node(i + 1)],
+                                       i == 0, i + 1 == fiber.segments, fiber.rest_spacing_m,
+                                       1.0 / fiber.rest_spacing_m));
     }
     if (worst <= tolerance) return sweep;
   }
@@ -45,7 +46,8 @@ int relax_lattice(const Lattice& lattice, std::span<const std::uint8_t> held,
         const std::size_t row = std::size_t(j) * stride;
         for (int k = 0; k < cols; ++k) {
           const std::size_t a = row + std::size_t(k);
-          worst = std::max(worst, project_link(x[a], x[a + stride], h[a], h[a + stride], sy, inv_sy));
+          worst =
+              std::max(worst, project_link(x[a], x[a + stride], h[a], h[a + stride], sy, inv_sy));
         }
       }
     if (worst <= tolerance) return sweep;

@@ -29,7 +29,8 @@ double fiber_bending_energy(const Fiber& fiber, std::span<const Vec3> positions_
 }
 
 double fiber_target_energy(const Fiber& fiber, std::span<const Vec3> positions_m, double k_prime) {
-  const double chord = (positions_m[fiber.node(fiber.segments)] - positions_m[fiber.node(0)]).norm();
+  const double chord =
+      (positions_m[fiber.node(fiber.segments)] - positions_m[fiber.node(0)]).norm();
   const double off = chord - fiber.rest_length_m();
   return k_prime * fiber.rest_spacing_m * off * off;  // eq. (13), k' = k_prime h
 }
@@ -74,7 +75,8 @@ class Wave {
     double a0 = 2.0 * chord_ / (half_waves * std::numbers::pi) * std::sqrt(slack / chord_);
     double a1 = 0.9 * a0;
     double f0 = this->length(a0) - length, f1 = this->length(a1) - length;
-    for (int iteration = 0; iteration < 30 && std::abs(f1) > 1e-12 * length && f1 != f0; ++iteration) {
+    for (int iteration = 0; iteration < 30 && std::abs(f1) > 1e-12 * length && f1 != f0;
+         ++iteration) {
       const double a2 = std::max(0.0, a1 - f1 * (a1 - a0) / (f1 - f0));
       a0 = a1;
       f0 = f1;
@@ -112,7 +114,8 @@ bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3
   int half_waves = 1;
   double amplitude = 0.0;
   if (slack > 0.0 && params.k_r4 > 0.0) {
-    const double m = chord / std::numbers::pi * std::sqrt(params.k_prime * slack / (2.0 * params.k_r4));
+    const double m =
+        chord / std::numbers::pi * std::sqrt(params.k_prime * slack / (2.0 * params.k_r4));
     // A half-wave needs 4 segments to be a wave and not a zigzag of the lattice.
     const int finest = std::max(1, fiber.segments / 4);
     half_waves = std::clamp(int(std::lround(m)), 1, finest);
@@ -146,7 +149,8 @@ bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3
       b = wave.at(sample + 1, amplitude);
     }
     const double piece = (b - a).norm();
-    const Eigen::Vector2d p = piece > 0.0 ? Eigen::Vector2d(a + (wanted - walked) / piece * (b - a)) : a;
+    const Eigen::Vector2d p =
+        piece > 0.0 ? Eigen::Vector2d(a + (wanted - walked) / piece * (b - a)) : a;
     positions_m[fiber.node(i)] = start + p.x() * along + (sign * p.y()) * across;
   }
   return true;

@@ -1,11 +1,11 @@
 // The paper's four cloth properties (section 1) as numbers on the output of
 // the corner-driven infill mode, end to end through build/flag-sim.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numeric>
-
-#include <gtest/gtest.h>
 
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
@@ -20,18 +20,21 @@ std::string scene(const std::string& end_corners, double radius_m, double durati
                   const std::string& later_keyframes = "") {
   return "[scene]\nmode = \"infill\"\nduration = " + std::to_string(duration_s) +
          "\nfps = 30.0\nseed = 1\n[flag]\nsize = [1.5, 1.0]\nfine = [33, 49]\n"
-         "initial_perturbation = 0.005\n[wrinkles]\nfiber_radius = " + std::to_string(radius_m) +
+         "initial_perturbation = 0.005\n[wrinkles]\nfiber_radius = " +
+         std::to_string(radius_m) +
          "\nfiber_modulus = 1.0e9\nk_prime = 0.1\n"
-         "[[keyframe]]\ntime = 0.0\ncorners = [[0.0, 2.0, 0.0], [1.5, 2.0, 0.0], [0.0, 1.0, 0.0], [1.5, 1.0, 0.0]]\n"
-         "[[keyframe]]\ntime = 1.5\ncorners = " + end_corners + "\n" + later_keyframes;
+         "[[keyframe]]\ntime = 0.0\ncorners = [[0.0, 2.0, 0.0], [1.5, 2.0, 0.0], [0.0, 1.0, 0.0], "
+         "[1.5, 1.0, 0.0]]\n"
+         "[[keyframe]]\ntime = 1.5\ncorners = " +
+         end_corners + "\n" + later_keyframes;
 }
 
 // Corners pushed toward each other along the rows by `fraction` of the width.
 std::string pushed(double fraction) {
   const double d = 0.75 * fraction;
   auto num = [](double v) { return std::to_string(v); };
-  return "[[" + num(d) + ", 2.0, 0.0], [" + num(1.5 - d) + ", 2.0, 0.0], [" + num(d) + ", 1.0, 0.0], [" +
-         num(1.5 - d) + ", 1.0, 0.0]]";
+  return "[[" + num(d) + ", 2.0, 0.0], [" + num(1.5 - d) + ", 2.0, 0.0], [" + num(d) +
+         ", 1.0, 0.0], [" + num(1.5 - d) + ", 1.0, 0.0]]";
 }
 
 struct Run {
@@ -42,7 +45,8 @@ struct Run {
 std::unique_ptr<Run> run(const std::string& scene_text) {
   auto result = std::make_unique<Run>();
   result->dir.write("s.toml", scene_text);
-  const ProcessResult process = run_flag_sim({"run", "s.toml", "-o", "r.h5", "--quiet"}, result->dir.path());
+  const ProcessResult process =
+      run_flag_sim({"run", "s.toml", "-o", "r.h5", "--quiet"}, result->dir.path());
   EXPECT_EQ(process.exit_code, 0) << process.err;
   result->reader = std::make_unique<data::OutputReader>(result->dir.file("r.h5"));
   return result;
@@ -81,7 +85,8 @@ TEST(InfillProperties, Two_FormedWrinklesPersistWhileTheCornersAreHeld) {
   ASSERT_EQ(r->reader->frame_count(), 148);
   const auto formed = r->reader->positions(46), later = r->reader->positions(146);
   double largest = 0.0;
-  for (std::size_t i = 0; i < formed.size(); ++i) largest = std::max(largest, (later[i] - formed[i]).norm());
+  for (std::size_t i = 0; i < formed.size(); ++i)
+    largest = std::max(largest, (later[i] - formed[i]).norm());
   EXPECT_LT(largest, 0.005 * 1.0);  // 0.5% of the flag height; measured 0
 }
 
@@ -91,9 +96,10 @@ TEST(InfillProperties, Two_SmallCornerJitterKeepsTheWrinklePattern) {
   const double offsets[] = {0.004, -0.005, 0.003, -0.002, 0.005, 0.0};
   for (int n = 0; n < 6; ++n) {
     const double t = 1.75 + 0.25 * n, e = offsets[n];
-    jitter += "[[keyframe]]\ntime = " + std::to_string(t) + "\ncorners = [[" + std::to_string(0.225 + e) +
-              ", 2.0, " + std::to_string(e) + "], [1.275, " + std::to_string(2.0 - e) + ", 0.0], [0.225, 1.0, " +
-              std::to_string(-e) + "], [" + std::to_string(1.275 - e) + ", 1.0, 0.0]]\n";
+    jitter += "[[keyframe]]\ntime = " + std::to_string(t) + "\ncorners = [[" +
+              std::to_string(0.225 + e) + ", 2.0, " + std::to_string(e) + "], [1.275, " +
+              std::to_string(2.0 - e) + ", 0.0], [0.225, 1.0, " + std::to_string(-e) + "], [" +
+              std::to_string(1.275 - e) + ", 1.0, 0.0]]\n";
   }
   const auto r = run(scene(pushed(0.3), 1e-3, 3.5, jitter));
   const int rows = r->reader->rows(), cols = r->reader->cols();
@@ -124,8 +130,8 @@ TEST(InfillProperties, Three_WrinkleWavelengthGrowsWithFiberRadius) {
   double previous = 0.0;
   for (double radius : {0.5e-3, 1.0e-3, 2.0e-3}) {
     const auto r = run(scene(pushed(0.3), radius, 1.6));
-    const double wavelength =
-        wavelength_m(r->reader->positions(r->reader->frame_count() - 1), r->reader->rows(), r->reader->cols());
+    const double wavelength = wavelength_m(r->reader->positions(r->reader->frame_count() - 1),
+                                           r->reader->rows(), r->reader->cols());
     EXPECT_GT(wavelength, previous) << "r = " << radius;
     previous = wavelength;
   }
@@ -154,8 +160,8 @@ TEST(InfillProperties, Four_LooseConstraintsGiveBroadGentleWrinkles) {
   // most of it there; bending spread over the cloth puts little more than 5%.
   // Threshold 0.25 (measured 0.14).
   const auto r = run(scene(pushed(0.1), 1e-3, 1.6));
-  std::vector<double> energy =
-      bending_per_node(r->reader->positions(r->reader->frame_count() - 1), r->reader->rows(), r->reader->cols());
+  std::vector<double> energy = bending_per_node(r->reader->positions(r->reader->frame_count() - 1),
+                                                r->reader->rows(), r->reader->cols());
   const double total = std::accumulate(energy.begin(), energy.end(), 0.0);
   ASSERT_GT(total, 0.0);
   std::sort(energy.begin(), energy.end(), std::greater<>());
@@ -164,7 +170,8 @@ TEST(InfillProperties, Four_LooseConstraintsGiveBroadGentleWrinkles) {
   EXPECT_LT(share, 0.25);
   // And the cloth did bend out of its plane: broad wrinkles, not an in-plane crumple.
   double height = 0.0;
-  for (const Vec3& p : r->reader->positions(r->reader->frame_count() - 1)) height = std::max(height, std::abs(p.z()));
+  for (const Vec3& p : r->reader->positions(r->reader->frame_count() - 1))
+    height = std::max(height, std::abs(p.z()));
   EXPECT_GT(height, 0.05);
 }
 

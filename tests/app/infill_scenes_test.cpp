@@ -13,7 +13,8 @@ class InfillScene : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(InfillScene, EveryLinkWithinOnePercentOnEveryFrame) {
   TempDir dir;
-  const std::string scene = std::string(FLAGSIM_SOURCE_DIR) + "/scenes/infill/" + GetParam() + ".toml";
+  const std::string scene =
+      std::string(FLAGSIM_SOURCE_DIR) + "/scenes/infill/" + GetParam() + ".toml";
   const ProcessResult result = run_flag_sim({"run", scene, "-o", dir.file("run.h5"), "--quiet"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const data::OutputReader reader(dir.file("run.h5"));

@@ -1,9 +1,9 @@
 // `flag-sim run`, `validate`, `info` and `scene` end to end.
-#include <filesystem>
-#include <cstring>
-#include <fstream>
-
 #include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
@@ -65,7 +65,9 @@ TEST(Run, SameSceneAndSeedGiveIdenticalPositions) {
   dir.write("windy.toml", kWindy);
   for (const char* out : {"a.h5", "b.h5"})
     ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", out, "--quiet"}, dir.path()).exit_code, 0);
-  ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", "c.h5", "--seed", "4", "--quiet"}, dir.path()).exit_code, 0);
+  ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", "c.h5", "--seed", "4", "--quiet"}, dir.path())
+                .exit_code,
+            0);
   const auto a = all_positions(dir.file("a.h5")), b = all_positions(dir.file("b.h5")),
              c = all_positions(dir.file("c.h5"));
   ASSERT_EQ(a.size(), 7u * 9 * 13 * 3);
@@ -76,9 +78,10 @@ TEST(Run, SameSceneAndSeedGiveIdenticalPositions) {
 TEST(Run, SetOverridesAreRecordedInTheFile) {
   TempDir dir;
   dir.write("windy.toml", kWindy);
-  const ProcessResult result = run_flag_sim(
-      {"run", "windy.toml", "-o", "r.h5", "--set", "flag.fine=[5,7]", "--set", "wind.velocity=[4,0,0]", "--quiet"},
-      dir.path());
+  const ProcessResult result =
+      run_flag_sim({"run", "windy.toml", "-o", "r.h5", "--set", "flag.fine=[5,7]", "--set",
+                    "wind.velocity=[4,0,0]", "--quiet"},
+                   dir.path());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const data::OutputReader reader(dir.file("r.h5"));
   EXPECT_EQ(reader.rows(), 5);
@@ -91,9 +94,10 @@ TEST(Run, DivergedRunKeepsItsGoodFramesAndExitsThree) {
   TempDir dir;
   dir.write("windy.toml", kWindy);
   // 0.1% strain is exceeded once gravity and wind have stretched the cloth.
-  const ProcessResult result = run_flag_sim(
-      {"run", "windy.toml", "-o", "d.h5", "--set", "limits.max_strain=0.001", "--set",
-       "scene.duration=2", "--quiet"}, dir.path());
+  const ProcessResult result =
+      run_flag_sim({"run", "windy.toml", "-o", "d.h5", "--set", "limits.max_strain=0.001", "--set",
+                    "scene.duration=2", "--quiet"},
+                   dir.path());
   EXPECT_EQ(result.exit_code, 3) << result.err;
   EXPECT_TRUE(result.err.starts_with("error: simulation diverged at t = ")) << result.err;
   EXPECT_NE(result.err.find("limits.max_strain"), std::string::npos);
@@ -109,7 +113,9 @@ TEST(Run, OutputEveryKeepsEveryNthFrame) {
   TempDir dir;
   dir.write("windy.toml", kWindy);
   ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", "e.h5", "--set", "output.every=3", "--quiet"},
-                         dir.path()).exit_code, 0);
+                         dir.path())
+                .exit_code,
+            0);
   const data::OutputReader reader(dir.file("e.h5"));
   EXPECT_EQ(reader.times_s(), (std::vector<double>{0.0, 0.1, 0.2}));
 }
@@ -120,7 +126,8 @@ TEST(Validate, PrintsWhatWouldRun) {
   const ProcessResult result = run_flag_sim({"validate", "windy.toml"}, dir.path());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("ok: windy.toml: scene \"windy\", mode mass-spring, 9 x 13 nodes"),
-            std::string::npos) << result.out;
+            std::string::npos)
+      << result.out;
   EXPECT_EQ(dir.entry_count(), 1);  // validate writes nothing
 }
 
@@ -129,7 +136,8 @@ TEST(SceneCommand, DefaultSceneRoundTrips) {
   const ProcessResult printed = run_flag_sim({"scene", "--default"});
   ASSERT_EQ(printed.exit_code, 0);
   std::ifstream file(std::string(FLAGSIM_SOURCE_DIR) + "/scenes/default.toml");
-  const std::string source((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string source((std::istreambuf_iterator<char>(file)),
+                           std::istreambuf_iterator<char>());
   EXPECT_EQ(printed.out, source);
   dir.write("d.toml", printed.out);
   EXPECT_EQ(run_flag_sim({"validate", "d.toml"}, dir.path()).exit_code, 0);
@@ -141,9 +149,9 @@ TEST(Info, SummarisesARun) {
   ASSERT_EQ(run_flag_sim({"run", "windy.toml", "-o", "i.h5", "--quiet"}, dir.path()).exit_code, 0);
   const ProcessResult result = run_flag_sim({"info", "i.h5"}, dir.path());
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  for (const char* line : {"status    complete", "mode      mass-spring", "lattice   9 x 13 (117 nodes)",
-                           "frames    7, t = 0 .. 0.2 s", "effects   stretch,gravity,wind", "seed      3",
-                           "ms/frame (stretch "})
+  for (const char* line : {"status    complete", "mode      mass-spring",
+                           "lattice   9 x 13 (117 nodes)", "frames    7, t = 0 .. 0.2 s",
+                           "effects   stretch,gravity,wind", "seed      3", "ms/frame (stretch "})
     EXPECT_NE(result.out.find(line), std::string::npos) << line << "\n" << result.out;
 }
 

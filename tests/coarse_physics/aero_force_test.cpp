@@ -1,8 +1,8 @@
 #include "flagsim/coarse_physics/aero_force.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "scene_fixtures.hpp"
 #include "tolerances.hpp"

@@ -1,9 +1,9 @@
 #include "flagsim/coarse_physics/bending_springs.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "finite_difference.hpp"
 #include "scene_fixtures.hpp"

@@ -1,8 +1,8 @@
 #include "flagsim/coarse_physics/cloth_model.hpp"
 
-#include <numeric>
-
 #include <gtest/gtest.h>
+
+#include <numeric>
 
 #include "flagsim/coarse_physics/stretch_springs.hpp"
 #include "scene_fixtures.hpp"

@@ -1,9 +1,9 @@
 #pragma once
 // Finite-difference check of a force term against its energy: f = -dE/dx.
+#include <gtest/gtest.h>
+
 #include <random>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "flagsim/coarse_physics/force_term.hpp"
 #include "flagsim/core/lattice.hpp"

@@ -1,10 +1,9 @@
 #include "flagsim/coarse_physics/gravity_force.hpp"
 
-#include "flagsim/coarse_physics/cloth_model.hpp"
-
 #include <gtest/gtest.h>
 
 #include "finite_difference.hpp"
+#include "flagsim/coarse_physics/cloth_model.hpp"
 #include "scene_fixtures.hpp"
 
 namespace flagsim::physics {

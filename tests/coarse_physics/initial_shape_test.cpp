@@ -1,8 +1,8 @@
 #include "flagsim/coarse_physics/initial_shape.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace flagsim::physics {
 namespace {

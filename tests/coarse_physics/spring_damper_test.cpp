@@ -1,9 +1,9 @@
 #include "flagsim/coarse_physics/spring_damper.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
-
-#include <gtest/gtest.h>
 
 #include "finite_difference.hpp"
 #include "flagsim/core/strain.hpp"
@@ -34,7 +34,8 @@ TEST(SpringDamper, EnergyIsConservedWithoutDampingOrWind) {
     const std::vector<Vec3> v_before = state.v_m_s;
     solver.step(state, solver.substep_s(), nullptr);
     double kinetic = 0.0;
-    for (std::size_t i = 0; i < mass.size(); ++i) kinetic += 0.5 * mass[i] * v_before[i].dot(state.v_m_s[i]);
+    for (std::size_t i = 0; i < mass.size(); ++i)
+      kinetic += 0.5 * mass[i] * v_before[i].dot(state.v_m_s[i]);
     const double energy = potential + kinetic;
     if (s == 0) e0 = energy;
     largest_drift = std::max(largest_drift, std::abs(energy - e0));
@@ -70,7 +71,8 @@ double largest_omega2(SpringDamperSolver& solver) {
   const ClothModel& model = solver.model();
   const std::vector<Vec3> rest = model.lattice.rest_positions();
   std::vector<Vec3> v(rest.size(), Vec3::Zero()), dir = test::jiggled(model.lattice, 1.0, 9);
-  for (std::size_t i = 0; i < dir.size(); ++i) dir[i] = model.pinned[i] ? Vec3::Zero() : Vec3(dir[i] - rest[i]);
+  for (std::size_t i = 0; i < dir.size(); ++i)
+    dir[i] = model.pinned[i] ? Vec3::Zero() : Vec3(dir[i] - rest[i]);
   double lambda = 0.0;
   const double h = 1e-7;
   for (int it = 0; it < 400; ++it) {
@@ -89,7 +91,8 @@ double largest_omega2(SpringDamperSolver& solver) {
     }
     double rayleigh = 0.0;
     for (std::size_t i = 0; i < rest.size(); ++i) {
-      const Vec3 kd = model.pinned[i] ? Vec3::Zero() : Vec3(-(fp[i] - fm[i]) / (2 * h) / model.mass_kg[i]);
+      const Vec3 kd =
+          model.pinned[i] ? Vec3::Zero() : Vec3(-(fp[i] - fm[i]) / (2 * h) / model.mass_kg[i]);
       rayleigh += kd.dot(dir[i]);
       dir[i] = kd;
     }
@@ -105,7 +108,7 @@ TEST(SpringDamper, StabilityBoundHoldsAndIsNotFarOff) {
   const double omega = std::sqrt(largest_omega2(solver));
   const double true_limit = 2.0 / omega;
   EXPECT_LE(solver.stable_substep_s(), true_limit * (1.0 + 1e-6));  // a bound: never above
-  EXPECT_GT(solver.stable_substep_s(), 0.4 * true_limit);            // and not needlessly small
+  EXPECT_GT(solver.stable_substep_s(), 0.4 * true_limit);           // and not needlessly small
   EXPECT_LE(solver.substep_s(), kStabilitySafety * solver.stable_substep_s() * (1.0 + 1e-12));
 }
 

@@ -1,8 +1,8 @@
 #include "flagsim/core/divergence.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace flagsim {
 namespace {

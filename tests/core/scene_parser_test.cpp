@@ -51,7 +51,8 @@ TEST(SceneParser, DefaultsAndOptionalEffects) {
 }
 
 TEST(SceneParser, ZeroGravityIsNoGravity) {
-  const Scene scene = parse_scene(std::string(kMinimal) + "[gravity]\nacceleration = [0, 0, 0]\n", "s.toml");
+  const Scene scene =
+      parse_scene(std::string(kMinimal) + "[gravity]\nacceleration = [0, 0, 0]\n", "s.toml");
   EXPECT_FALSE(scene.gravity.has_value());
 }
 

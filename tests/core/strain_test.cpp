@@ -1,8 +1,8 @@
 #include "flagsim/core/strain.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace flagsim {
 namespace {
@@ -11,7 +11,7 @@ TEST(Strain, ZeroAtRestAndExactUnderUniformStretch) {
   const Lattice lattice = Lattice::rectangle(4, 5, 1.0, 1.0, Vec3::Zero());
   std::vector<Vec3> x = lattice.rest_positions();
   EXPECT_LT(link_strain(lattice, x).max, 1e-14);  // round-off of the rest spacing only
-  for (Vec3& p : x) p.x() *= 1.02;  // 2% along rows, 0 along columns
+  for (Vec3& p : x) p.x() *= 1.02;                // 2% along rows, 0 along columns
   const StrainStats s = link_strain(lattice, x);
   EXPECT_NEAR(s.max, 0.02, 1e-12);
   const double row_links = 4.0 * 4, col_links = 3.0 * 5;

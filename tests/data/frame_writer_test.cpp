@@ -1,10 +1,10 @@
 #include "flagsim/data/frame_writer.hpp"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <gtest/gtest.h>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/data/output_reader.hpp"

@@ -1,8 +1,8 @@
 #include "flagsim/infill/infill_solver.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "flagsim/core/strain.hpp"
 
@@ -13,7 +13,8 @@ TEST(InfillSolver, CoarseEqualToFineGivesTheCoarsePositionsBack) {
   const Lattice lattice = Lattice::rectangle(5, 7, 1.5, 1.0, Vec3::Zero());
   InfillSolver solver(lattice, CellGrid::of(lattice, 5, 7), 20);
   std::vector<Vec3> dense = lattice.rest_positions(), coarse = dense;
-  for (std::size_t i = 0; i < coarse.size(); ++i) coarse[i] += Vec3(0.01 * i, -0.02 * i, std::sin(double(i)));
+  for (std::size_t i = 0; i < coarse.size(); ++i)
+    coarse[i] += Vec3(0.01 * i, -0.02 * i, std::sin(double(i)));
   solver.fill(coarse, dense, nullptr);
   for (std::size_t i = 0; i < coarse.size(); ++i) EXPECT_EQ(dense[i], coarse[i]) << i;
 }
@@ -26,17 +27,20 @@ TEST(InfillSolver, TranslationIsReproducedExactly) {
   std::vector<Vec3> coarse;
   const CellGrid grid = solver.grid();
   for (int jc = 0; jc < 3; ++jc)
-    for (int kc = 0; kc < 4; ++kc) coarse.push_back(dense[grid.dense_index(lattice, jc, kc)] + shift);
+    for (int kc = 0; kc < 4; ++kc)
+      coarse.push_back(dense[grid.dense_index(lattice, jc, kc)] + shift);
   solver.fill(coarse, dense, nullptr);
   const std::vector<Vec3> rest = lattice.rest_positions();
-  for (std::size_t i = 0; i < dense.size(); ++i) EXPECT_LT((dense[i] - rest[i] - shift).norm(), 1e-12) << i;
+  for (std::size_t i = 0; i < dense.size(); ++i)
+    EXPECT_LT((dense[i] - rest[i] - shift).norm(), 1e-12) << i;
 }
 
 // Rolls the rest lattice onto a cylinder of curvature kappa about the y axis:
 // an isometry, so the exact answer keeps every length.
 Vec3 rolled(const Vec3& rest, double kappa) {
   if (kappa == 0.0) return rest;
-  return Vec3(std::sin(kappa * rest.x()) / kappa, rest.y(), (1.0 - std::cos(kappa * rest.x())) / kappa);
+  return Vec3(std::sin(kappa * rest.x()) / kappa, rest.y(),
+              (1.0 - std::cos(kappa * rest.x())) / kappa);
 }
 
 TEST(InfillSolver, FollowsAGraduallyRolledClothSeamlessly) {
@@ -55,7 +59,8 @@ TEST(InfillSolver, FollowsAGraduallyRolledClothSeamlessly) {
         coarse[grid.coarse_index(jc, kc)] = rolled(rest[grid.dense_index(lattice, jc, kc)], kappa);
     solver.fill(coarse, dense, nullptr);
     double sum2 = 0.0;
-    for (std::size_t i = 0; i < dense.size(); ++i) sum2 += (dense[i] - rolled(rest[i], kappa)).squaredNorm();
+    for (std::size_t i = 0; i < dense.size(); ++i)
+      sum2 += (dense[i] - rolled(rest[i], kappa)).squaredNorm();
     worst_rms = std::max(worst_rms, std::sqrt(sum2 / double(dense.size())));
     // Fiber lengths (property 1) on every frame.
     ASSERT_LT(link_strain(lattice, dense).max, 0.01) << "frame " << f;
@@ -68,8 +73,10 @@ TEST(InfillSolver, FollowsAGraduallyRolledClothSeamlessly) {
   auto on_edge = [&](int j, int k) { return j % grid.row_stride == 0 || k % grid.col_stride == 0; };
   for (int j = 0; j < lattice.rows; ++j) {
     for (int k = 0; k + 1 < lattice.cols; ++k) {
-      const double strain = std::abs((dense[lattice.index(j, k + 1)] - dense[lattice.index(j, k)]).norm() -
-                                     lattice.spacing_x_m) / lattice.spacing_x_m;
+      const double strain =
+          std::abs((dense[lattice.index(j, k + 1)] - dense[lattice.index(j, k)]).norm() -
+                   lattice.spacing_x_m) /
+          lattice.spacing_x_m;
       double& bucket = (on_edge(j, k) || on_edge(j, k + 1)) ? edge_strain : inner_strain;
       bucket = std::max(bucket, strain);
     }
@@ -84,7 +91,8 @@ TEST(InfillSolver, StepFiveIsScheduledOnlyWithWrinkles) {
   const Lattice lattice = Lattice::rectangle(9, 13, 1.5, 1.0, Vec3::Zero());
   StageTimes without, with;
   InfillSolver(lattice, CellGrid::of(lattice, 3, 4), 20).register_stages(without);
-  InfillSolver(lattice, CellGrid::of(lattice, 3, 4), 20, WrinkleParams{1e-4, 1.0, 0.5}).register_stages(with);
+  InfillSolver(lattice, CellGrid::of(lattice, 3, 4), 20, WrinkleParams{1e-4, 1.0, 0.5})
+      .register_stages(with);
   const std::vector<std::string> four = {"infill_3.1", "infill_3.2", "infill_3.3", "infill_3.4"};
   EXPECT_EQ(without.names(), four);
   EXPECT_EQ(with.names().back(), "infill_3.5");

@@ -1,9 +1,9 @@
 #include "flagsim/infill/initial_move.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace flagsim::infill {
 namespace {
@@ -29,8 +29,8 @@ TEST(InitialMove, WeightedInitialMoveKeepsTheMiddleAndFollowsTheEnds) {
   x[0] += Vec3(0, 0.2, 0);
   x[8] += Vec3(0, 0.2, 0);
   weighted_initial_move(fiber, x, previous);
-  EXPECT_NEAR(x[4].y(), 0.0, 1e-15);          // the middle has weight 0
-  EXPECT_NEAR(x[2].y(), 0.5 * 0.2, 1e-15);    // a quarter of the way: weight 1/2
+  EXPECT_NEAR(x[4].y(), 0.0, 1e-15);        // the middle has weight 0
+  EXPECT_NEAR(x[2].y(), 0.5 * 0.2, 1e-15);  // a quarter of the way: weight 1/2
   EXPECT_NEAR(x[1].y(), 0.75 * 0.2, 1e-15);
 }
 

@@ -1,11 +1,11 @@
 #include "flagsim/infill/length_search.hpp"
 
-#include "flagsim/infill/initial_move.hpp"
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include <gtest/gtest.h>
+#include "flagsim/infill/initial_move.hpp"
 
 namespace flagsim::infill {
 namespace {

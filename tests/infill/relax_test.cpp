@@ -1,9 +1,9 @@
 #include "flagsim/infill/relax.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace flagsim::infill {
 namespace {
@@ -18,7 +18,8 @@ inline std::vector<Vec3> straight(int segments = 8) {
 TEST(Relax, RelaxFiberRestoresNeighbourDistancesWithEndsHeld) {
   const Fiber fiber{0, 1, 8, 0.1};
   std::vector<Vec3> x = straight();
-  for (int i = 1; i < 8; ++i) x[i] += Vec3(0.0, 0.01 * std::sin(double(i)), 0.02 * std::cos(double(i)));
+  for (int i = 1; i < 8; ++i)
+    x[i] += Vec3(0.0, 0.01 * std::sin(double(i)), 0.02 * std::cos(double(i)));
   x[8] = Vec3(0.7, 0.0, 0.0);  // chord 0.7 < 0.8: the fiber must bulge, not shrink
   const int sweeps = relax_fiber(fiber, x, 1000, 1e-4);
   EXPECT_LT(sweeps, 1000);

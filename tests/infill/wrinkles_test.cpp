@@ -1,10 +1,10 @@
 #include "flagsim/infill/wrinkles.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "flagsim/infill/relax.hpp"
 
@@ -64,8 +64,8 @@ TEST(Wrinkles, BendingEnergyOfAnArcIsTheSumOfEquationOne) {
   }
   const Fiber fiber{0, 1, segments, h};
   // Nodes at arc-length steps h: every turning angle is exactly h / R.
-  EXPECT_NEAR(fiber_bending_energy(fiber, x, k_r4), (segments - 1) * k_r4 * (h / radius) * (h / radius),
-              1e-12);
+  EXPECT_NEAR(fiber_bending_energy(fiber, x, k_r4),
+              (segments - 1) * k_r4 * (h / radius) * (h / radius), 1e-12);
 }
 
 TEST(Wrinkles, BendingEnergyOfAWaveMatchesTheContinuum) {
@@ -75,7 +75,8 @@ TEST(Wrinkles, BendingEnergyOfAWaveMatchesTheContinuum) {
   const std::vector<Vec3> x = wave(segments, chord, amplitude, m);
   const Fiber fiber{0, 1, segments, chord / segments};
   const double q = m * kPi / chord;
-  const double continuum = k_r4 * (chord / segments) * 0.5 * amplitude * amplitude * std::pow(q, 4) * chord;
+  const double continuum =
+      k_r4 * (chord / segments) * 0.5 * amplitude * amplitude * std::pow(q, 4) * chord;
   EXPECT_NEAR(fiber_bending_energy(fiber, x, k_r4), continuum, 0.02 * continuum);
 }
 

@@ -16,7 +16,8 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
                           const std::string& cwd = "");
 
 /// Runs build/flag-sim with `args` in `cwd`.
-inline ProcessResult run_flag_sim(const std::vector<std::string>& args, const std::string& cwd = "") {
+inline ProcessResult run_flag_sim(const std::vector<std::string>& args,
+                                  const std::string& cwd = "") {
   return run_process(FLAGSIM_BINARY, args, cwd);
 }
 

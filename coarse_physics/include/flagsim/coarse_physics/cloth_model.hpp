@@ -35,9 +35,9 @@ struct LinkFamily {
 
 struct ClothModel {
   Lattice lattice;
-  std::vector<double> mass_kg;          ///< [J*K]
-  std::vector<std::uint8_t> pinned;     ///< [J*K], 1 = position prescribed
-  std::array<LinkFamily, 4> links;      ///< row, column, two diagonals
+  std::vector<double> mass_kg;       ///< [J*K]
+  std::vector<std::uint8_t> pinned;  ///< [J*K], 1 = position prescribed
+  std::array<LinkFamily, 4> links;   ///< row, column, two diagonals
   double damping_per_s = 0.0;
 };
 

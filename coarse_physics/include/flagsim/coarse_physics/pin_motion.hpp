@@ -1,6 +1,7 @@
 #pragma once
 // Prescribed motion of the pinned nodes: at rest, or shaken by [pole]:
-//   x(t) = rest + axis * amplitude * sin(2 pi f t),  v(t) = axis * amplitude * 2 pi f cos(2 pi f t).
+//   x(t) = rest + axis * amplitude * sin(2 pi f t),  v(t) = axis * amplitude * 2 pi f cos(2 pi f
+//   t).
 #include <optional>
 
 #include "flagsim/core/scene.hpp"

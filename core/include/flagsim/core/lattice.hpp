@@ -15,14 +15,15 @@
 namespace flagsim {
 
 struct Lattice {
-  int rows = 0;              ///< J, >= 2
-  int cols = 0;              ///< K, >= 2
-  double spacing_x_m = 0.0;  ///< rest distance between neighbours along a row, m
-  double spacing_y_m = 0.0;  ///< rest distance between neighbours along a column, m
+  int rows = 0;                  ///< J, >= 2
+  int cols = 0;                  ///< K, >= 2
+  double spacing_x_m = 0.0;      ///< rest distance between neighbours along a row, m
+  double spacing_y_m = 0.0;      ///< rest distance between neighbours along a column, m
   Vec3 origin_m = Vec3::Zero();  ///< rest position of node (0, 0), m
 
   /// Lattice of a w x h m rectangle with J x K nodes (both >= 2).
-  static Lattice rectangle(int rows, int cols, double width_m, double height_m, const Vec3& origin_m);
+  static Lattice rectangle(int rows, int cols, double width_m, double height_m,
+                           const Vec3& origin_m);
 
   std::size_t node_count() const { return static_cast<std::size_t>(rows) * cols; }
   std::size_t index(int j, int k) const { return static_cast<std::size_t>(j) * cols + k; }

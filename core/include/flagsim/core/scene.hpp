@@ -22,8 +22,8 @@ struct FlagSpec {
   double width_m = 1.5;
   double height_m = 1.0;
   Vec3 origin_m = Vec3(0.0, 2.0, 0.0);
-  int fine_rows = 33;  ///< J
-  int fine_cols = 49;  ///< K
+  int fine_rows = 33;                        ///< J
+  int fine_cols = 49;                        ///< K
   std::optional<std::array<int, 2>> coarse;  ///< [Jc, Kc], divides the fine lattice
   double areal_density_kg_m2 = 0.2;
   double stretch_modulus_n_m = 2.0e4;  ///< 2D Young's modulus of the cloth, N/m
@@ -59,8 +59,8 @@ struct Turbulence {
 
 struct Wind {
   Vec3 velocity_m_s = Vec3::Zero();
-  double drag = 1.0;           ///< normal-force coefficient of a flat plate
-  double lift = 0.5;           ///< lift coefficient
+  double drag = 1.0;  ///< normal-force coefficient of a flat plate
+  double lift = 0.5;  ///< lift coefficient
   double air_density_kg_m3 = 1.225;
   std::optional<Gusts> gusts;
   std::optional<Turbulence> turbulence;
@@ -96,9 +96,9 @@ struct Keyframe {
 };
 
 struct Output {
-  std::string file;     ///< empty: chosen by the app
-  int every = 1;        ///< keep every n-th simulated frame
-  int flush_every = 10; ///< frames written between flushes to disk
+  std::string file;      ///< empty: chosen by the app
+  int every = 1;         ///< keep every n-th simulated frame
+  int flush_every = 10;  ///< frames written between flushes to disk
 };
 
 struct Render {

@@ -26,7 +26,7 @@ struct RunInfo {
   std::string scene_toml;            ///< the scene as run
   std::string version;
   std::uint64_t seed = 0;
-  std::vector<std::string> stages;   ///< columns of /stats/stage_seconds
+  std::vector<std::string> stages;  ///< columns of /stats/stage_seconds
   /// Column of `stages` that receives the time write_frame() itself takes
   /// (positions and time), or -1.
   int output_stage = -1;

@@ -66,7 +66,8 @@ class InfillSolver {
   const CellGrid& grid() const { return grid_; }
 
  private:
-  void deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m, StageTimes* times);
+  void deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m,
+              StageTimes* times);
   /// The cloth's normal over the cell whose top-left dense node is `corner`.
   Vec3 cell_normal(std::size_t corner, std::span<const Vec3> positions_m) const;
   /// Dense index of the top-left node of the cell holding fiber node `node`.
@@ -91,7 +92,7 @@ class InfillSolver {
   std::vector<Fiber> cell_cols_;    ///< interior columns of every cell
   std::vector<std::uint8_t> held_;  ///< coarse nodes
   std::vector<std::size_t> coarse_dense_;  ///< dense index of each coarse node
-  std::vector<Vec3> previous_;      ///< the lattice before the current deformation step
+  std::vector<Vec3> previous_;             ///< the lattice before the current deformation step
   std::vector<Vec3> coarse_start_, coarse_step_;
   int stage_[5] = {-1, -1, -1, -1, -1};
   int last_steps_ = 0, last_sweeps_ = 0;

@@ -5,8 +5,8 @@
 // positions_m - previous_m at a fiber's end nodes).
 #include <span>
 
-#include "flagsim/core/vec3.hpp"
 #include "flagsim/core/lattice.hpp"
+#include "flagsim/core/vec3.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/fiber.hpp"
 

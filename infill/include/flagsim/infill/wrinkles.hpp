@@ -40,9 +40,9 @@
 namespace flagsim::infill {
 
 struct WrinkleParams {
-  double k_r4 = 0.0;          ///< k r^4 of eqs. (1), (10): 1/2 E_f (pi/4) r^4, N m^2
-  double k_prime = 1.0;       ///< k_prime of eq. (13) per unit length, J/m^3 (see above)
-  double tolerance = 0.0;     ///< relative |E - e| / max(E, e) below which a fiber is left alone
+  double k_r4 = 0.0;       ///< k r^4 of eqs. (1), (10): 1/2 E_f (pi/4) r^4, N m^2
+  double k_prime = 1.0;    ///< k_prime of eq. (13) per unit length, J/m^3 (see above)
+  double tolerance = 0.0;  ///< relative |E - e| / max(E, e) below which a fiber is left alone
 };
 
 /// eq. (10): k = 1/2 E pi/4, times r^4.
