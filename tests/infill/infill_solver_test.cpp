@@ -68,23 +68,32 @@ TEST(InfillSolver, FollowsAGraduallyRolledClothSeamlessly) {
   // Close to the exact surface: within 5 mm RMS on a 1.5 m flag whose dense
   // spacing is 31 mm (measured: 3.2 mm).
   EXPECT_LT(worst_rms, 5e-3);
-  // Seams: links that touch a cell edge are no more strained than the others.
-  double edge_strain = 0.0, inner_strain = 0.0;
+  // Seams: the lattice is one array, so continuous by construction; the links
+  // that touch a cell edge carry no more strain on average than those inside,
+  // and none past the relaxation tolerance (measured: mean 0.027% at edges,
+  // 0.032% inside; max 0.45% and 0.37%: the edges' links next to the held
+  // coarse nodes are the last to relax).
+  double edge_sum = 0.0, inner_sum = 0.0, edge_max = 0.0, inner_max = 0.0;
+  int edge_links = 0, inner_links = 0;
   auto on_edge = [&](int j, int k) { return j % grid.row_stride == 0 || k % grid.col_stride == 0; };
-  for (int j = 0; j < lattice.rows; ++j) {
-    for (int k = 0; k + 1 < lattice.cols; ++k) {
-      const double strain =
-          std::abs((dense[lattice.index(j, k + 1)] - dense[lattice.index(j, k)]).norm() -
-                   lattice.spacing_x_m) /
-          lattice.spacing_x_m;
-      double& bucket = (on_edge(j, k) || on_edge(j, k + 1)) ? edge_strain : inner_strain;
-      bucket = std::max(bucket, strain);
+  auto visit = [&](int j0, int k0, int j1, int k1, double rest_m) {
+    const double strain =
+        std::abs((dense[lattice.index(j1, k1)] - dense[lattice.index(j0, k0)]).norm() - rest_m) /
+        rest_m;
+    const bool edge = on_edge(j0, k0) || on_edge(j1, k1);
+    (edge ? edge_sum : inner_sum) += strain;
+    (edge ? edge_links : inner_links) += 1;
+    double& largest = edge ? edge_max : inner_max;
+    largest = std::max(largest, strain);
+  };
+  for (int j = 0; j < lattice.rows; ++j)
+    for (int k = 0; k < lattice.cols; ++k) {
+      if (k + 1 < lattice.cols) visit(j, k, j, k + 1, lattice.spacing_x_m);
+      if (j + 1 < lattice.rows) visit(j, k, j + 1, k, lattice.spacing_y_m);
     }
-  }
-  // Seams: links touching a cell edge are no more strained than the relaxation
-  // tolerance allows anywhere.
-  EXPECT_LE(edge_strain, kRelaxTolerance);
-  EXPECT_LE(inner_strain, kRelaxTolerance);
+  EXPECT_LE(edge_sum / edge_links, inner_sum / inner_links);
+  EXPECT_LE(edge_max, kRelaxTolerance);
+  EXPECT_LE(inner_max, kRelaxTolerance);
 }
 
 TEST(InfillSolver, StepFiveIsScheduledOnlyWithWrinkles) {
