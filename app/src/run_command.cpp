@@ -61,6 +61,13 @@ int run_command(const RunOptions& options) {
   info.seed = scene.seed;
   info.stages = times.names();
   info.output_stage = output_stage;
+  if (scene.mode == Mode::kHybrid) {
+    const auto [coarse_rows, coarse_cols] = *scene.flag.coarse;
+    const int row_stride = (scene.flag.fine_rows - 1) / (coarse_rows - 1);
+    const int col_stride = (scene.flag.fine_cols - 1) / (coarse_cols - 1);
+    for (int j = 0; j < coarse_rows; ++j) info.coarse_rows.push_back(j * row_stride);
+    for (int k = 0; k < coarse_cols; ++k) info.coarse_cols.push_back(k * col_stride);
+  }
   info.numbers = simulation->numbers();
   info.numbers.emplace_back("fps", scene.fps);
   const Lattice& lattice = simulation->lattice();
@@ -91,7 +98,7 @@ int run_command(const RunOptions& options) {
       data::FrameStats stats{strain.max, strain.mean, times.seconds(), seconds_since(since_write),
                              simulation->kinetic_energy_j()};
       // Frame times are n / fps exactly, not the sum of the substeps.
-      writer.write_frame(frame / scene.fps, positions, stats);
+      writer.write_frame(frame / scene.fps, positions, stats, simulation->coarse_positions());
       times.reset();
       since_write = std::chrono::steady_clock::now();
     }

@@ -49,50 +49,88 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
   return params;
 }
 
-// mode "infill": no physics; the corners follow the keyframes and the whole
-// lattice comes from the paper's infill (Figs. 9-10). Velocities are the
-// frame-to-frame differences, for the divergence checks and kinetic energy.
-class InfillSimulation final : public Simulation {
+// The dense lattice filled by the paper's infill from coarse nodes: shared by
+// the infill and hybrid modes. Velocities are the frame-to-frame differences,
+// for the divergence checks.
+class DenseInfill {
  public:
-  explicit InfillSimulation(const Scene& scene)
-      : scene_(scene),
-        lattice_(scene.fine_lattice()),
-        solver_(lattice_, infill::CellGrid::of(lattice_, 2, 2),
-                scene.infill ? scene.infill->relax_iterations : kDefaultRelaxSweeps,
+  DenseInfill(const Scene& scene, int coarse_rows, int coarse_cols, int default_relax_sweeps)
+      : lattice_(scene.fine_lattice()),
+        solver_(lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
+                scene.infill ? scene.infill->relax_iterations : default_relax_sweeps,
                 wrinkle_params(scene), scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0),
-        mass_kg_(physics::make_cloth_model(scene).mass_kg) {
+        fps_(scene.fps),
+        wrinkles_(scene.wrinkles.has_value()) {
     positions_ = lattice_.rest_positions();
     if (scene.flag.initial_perturbation_m > 0.0) {
       const auto z =
           physics::smooth_perturbation(lattice_, scene.seed, scene.flag.initial_perturbation_m);
       for (std::size_t i = 0; i < z.size(); ++i) positions_[i].z() += z[i];
     }
-    velocities_.assign(positions_.size(), Vec3::Zero());
     previous_ = positions_;
-    fill(0.0, nullptr);  // frame 0: the corners of the first keyframe
-    std::fill(velocities_.begin(), velocities_.end(), Vec3::Zero());
+    velocities_.assign(positions_.size(), Vec3::Zero());
   }
-  const Lattice& lattice() const override { return lattice_; }
+  const Lattice& lattice() const { return lattice_; }
+  const infill::InfillSolver& solver() const { return solver_; }
+  void register_stages(StageTimes& times) { solver_.register_stages(times); }
+  /// Effects of the infill, after those of whatever drives the coarse nodes.
+  void add_effects(std::vector<std::string>& effects) const {
+    effects.emplace_back("infill");
+    if (wrinkles_) effects.emplace_back("wrinkles");
+  }
+  /// New dense lattice from the coarse nodes [Jc*Kc]; velocities over 1/fps.
+  void fill(std::span<const Vec3> coarse_m, StageTimes* times) {
+    std::copy(positions_.begin(), positions_.end(), previous_.begin());
+    solver_.fill(coarse_m, positions_, times);
+    for (std::size_t i = 0; i < positions_.size(); ++i)
+      velocities_[i] = (positions_[i] - previous_[i]) * fps_;
+  }
+  void forget_velocities() { std::fill(velocities_.begin(), velocities_.end(), Vec3::Zero()); }
+  std::span<const Vec3> positions() const { return positions_; }
+  std::span<const Vec3> velocities() const { return velocities_; }
+
+ private:
+  Lattice lattice_;
+  infill::InfillSolver solver_;
+  double fps_;
+  bool wrinkles_;
+  std::vector<Vec3> positions_, previous_, velocities_;
+};
+
+// mode "infill": no physics; the corners follow the keyframes and the whole
+// lattice comes from the paper's infill (Figs. 9-10).
+class InfillSimulation final : public Simulation {
+ public:
+  explicit InfillSimulation(const Scene& scene)
+      : scene_(scene),
+        dense_(scene, 2, 2, kDefaultRelaxSweeps),
+        mass_kg_(physics::make_cloth_model(scene).mass_kg) {
+    fill(0.0, nullptr);  // frame 0: the corners of the first keyframe
+    dense_.forget_velocities();
+  }
+  const Lattice& lattice() const override { return dense_.lattice(); }
   std::vector<std::string> effects() const override {
-    if (scene_.wrinkles) return {"keyframes", "infill", "wrinkles"};
-    return {"keyframes", "infill"};
+    std::vector<std::string> effects = {"keyframes"};
+    dense_.add_effects(effects);
+    return effects;
   }
   std::vector<std::pair<std::string, double>> numbers() const override { return {}; }
-  void register_stages(StageTimes& times) override { solver_.register_stages(times); }
+  void register_stages(StageTimes& times) override { dense_.register_stages(times); }
   void advance_frame(StageTimes* times) override {
     ++frame_;
     fill(frame_ / scene_.fps, times);
   }
-  std::span<const Vec3> positions() const override { return positions_; }
-  std::span<const Vec3> velocities() const override { return velocities_; }
+  std::span<const Vec3> positions() const override { return dense_.positions(); }
+  std::span<const Vec3> velocities() const override { return dense_.velocities(); }
   double kinetic_energy_j() const override {
     double total = 0.0;
-    for (std::size_t i = 0; i < velocities_.size(); ++i)
-      total += 0.5 * mass_kg_[i] * velocities_[i].squaredNorm();
+    const auto v = dense_.velocities();
+    for (std::size_t i = 0; i < v.size(); ++i) total += 0.5 * mass_kg_[i] * v[i].squaredNorm();
     return total;
   }
   std::string stepping_summary() const override {
-    return fmt::format("{} relaxation sweeps in the last frame", solver_.last_relax_sweeps());
+    return fmt::format("{} relaxation sweeps in the last frame",
+                       dense_.solver().last_relax_sweeps());
   }
 
  private:
@@ -102,24 +140,81 @@ class InfillSimulation final : public Simulation {
 
   void fill(double time_s, StageTimes* times) {
     const auto corners = infill::corners_at(scene_.keyframes, time_s);
-    std::copy(positions_.begin(), positions_.end(), previous_.begin());
-    solver_.fill(corners, positions_, times);
-    for (std::size_t i = 0; i < positions_.size(); ++i)
-      velocities_[i] = (positions_[i] - previous_[i]) * scene_.fps;
+    dense_.fill(corners, times);
   }
 
   const Scene& scene_;
-  Lattice lattice_;
-  infill::InfillSolver solver_;
+  DenseInfill dense_;
   std::vector<double> mass_kg_;
-  std::vector<Vec3> positions_, previous_, velocities_;
   int frame_ = 0;
+};
+
+// The scene's cloth on its coarse lattice: same continuum parameters, so the
+// same cloth (masses and springs follow the spacing).
+Scene coarse_scene_of(const Scene& scene) {
+  Scene coarse = scene;
+  coarse.flag.fine_rows = (*scene.flag.coarse)[0];
+  coarse.flag.fine_cols = (*scene.flag.coarse)[1];
+  coarse.flag.coarse.reset();
+  return coarse;
+}
+
+// mode "hybrid": the spring-damper physics on flag.coarse, the paper's infill
+// on flag.fine every output frame, starting from the previous dense frame.
+class HybridSimulation final : public Simulation {
+ public:
+  explicit HybridSimulation(const Scene& scene)
+      : coarse_scene_(coarse_scene_of(scene)),
+        physics_(coarse_scene_),
+        state_(physics_.initial_state(scene.seed)),
+        dense_(scene, (*scene.flag.coarse)[0], (*scene.flag.coarse)[1], kDefaultRelaxSweeps) {
+    dense_.fill(state_.x_m, nullptr);  // frame 0: the coarse nodes where the physics starts
+    dense_.forget_velocities();
+  }
+  const Lattice& lattice() const override { return dense_.lattice(); }
+  std::vector<std::string> effects() const override {
+    std::vector<std::string> effects = physics_.effects();
+    dense_.add_effects(effects);
+    return effects;
+  }
+  std::vector<std::pair<std::string, double>> numbers() const override {
+    return {{"substep_seconds", physics_.substep_s()},
+            {"substeps_per_frame", double(physics_.substeps_per_frame())},
+            {"stable_substep_seconds", physics_.stable_substep_s()}};
+  }
+  void register_stages(StageTimes& times) override {
+    physics_.register_stages(times);
+    dense_.register_stages(times);
+  }
+  void advance_frame(StageTimes* times) override {
+    physics_.advance_frame(state_, times);
+    dense_.fill(state_.x_m, times);
+  }
+  std::span<const Vec3> positions() const override { return dense_.positions(); }
+  std::span<const Vec3> velocities() const override { return dense_.velocities(); }
+  std::span<const Vec3> coarse_positions() const override { return state_.x_m; }
+  double kinetic_energy_j() const override { return physics_.kinetic_energy(state_); }
+  std::string stepping_summary() const override {
+    return fmt::format("{} substeps/frame of {:.3g} s on {} x {} coarse nodes",
+                       physics_.substeps_per_frame(), physics_.substep_s(),
+                       coarse_scene_.flag.fine_rows, coarse_scene_.flag.fine_cols);
+  }
+
+ private:
+  // Cells of a few dense nodes a side: 3.4 converges in a few passes.
+  static constexpr int kDefaultRelaxSweeps = 200;
+
+  Scene coarse_scene_;
+  physics::SpringDamperSolver physics_;
+  physics::ClothState state_;
+  DenseInfill dense_;
 };
 
 }  // namespace
 
 std::unique_ptr<Simulation> make_simulation(const Scene& scene) {
   if (scene.mode == Mode::kInfill) return std::make_unique<InfillSimulation>(scene);
+  if (scene.mode == Mode::kHybrid) return std::make_unique<HybridSimulation>(scene);
   return std::make_unique<MassSpringSimulation>(scene);
 }
 

@@ -86,8 +86,9 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
 void reject_unbuilt_features(const Scene& scene, const TableReader& root,
                              const TableReader& scene_in) {
   constexpr const char* kHint = "is not available in this version of flag-sim";
-  if (scene.mode != Mode::kMassSpring && scene.mode != Mode::kInfill)
-    scene_in.fail("mode", fmt::format("mode \"{}\" {} (available: \"mass-spring\", \"infill\")",
+  if (scene.mode == Mode::kBullet)
+    scene_in.fail("mode", fmt::format("mode \"{}\" {} (available: \"hybrid\", \"mass-spring\", "
+                                      "\"infill\")",
                                       to_string(scene.mode), kHint));
   if (scene.solver.backend != "spring-damper")
     fail_at(root, "solver.backend",

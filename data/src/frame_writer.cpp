@@ -63,10 +63,23 @@ bool append_row(hid_t dataset, hsize_t index, hid_t memory_type, const void* dat
 
 }  // namespace
 
+// /coarse/rows, /coarse/cols (int32) and the growing /coarse/positions [T, Jc, Kc, 3].
+bool write_index_list(hid_t group, const char* name, const std::vector<int>& values) {
+  const hsize_t count = values.size();
+  h5::Handle space = h5::dataspace(H5Screate_simple(1, &count, nullptr));
+  h5::Handle props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_obj_track_times(props.get(), false);
+  h5::Handle set = h5::dataset(
+      H5Dcreate2(group, name, H5T_STD_I32LE, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT));
+  return set.valid() &&
+         H5Dwrite(set.get(), H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
+}
+
 struct FrameWriter::Impl {
   h5::Handle file;
   h5::Handle time, positions, max_strain, mean_strain, stage_seconds, wall_seconds, kinetic;
-  std::vector<float> position_buffer;
+  h5::Handle coarse_positions;
+  std::vector<float> position_buffer, coarse_buffer;
   std::vector<double> times;
   std::size_t stage_count = 0;
   int output_stage = -1;
@@ -121,6 +134,7 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   impl_->wall_seconds = make_series(stats.get(), "wall_seconds", H5T_IEEE_F64LE, {});
   impl_->kinetic = make_series(stats.get(), "kinetic_energy", H5T_IEEE_F64LE, {});
   ok = ok && h5::write_string_list_attribute(impl_->stage_seconds.get(), "stages", info.stages);
+  if (!info.coarse_rows.empty()) ok = ok && write_coarse_layout(root, info);
 
   // /lattice/rest_positions [J, K, 3] float32
   const hsize_t rest_dims[3] = {rows, cols, 3};
@@ -145,11 +159,30 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   }
 }
 
+bool FrameWriter::write_coarse_layout(hid_t root, const RunInfo& info) {
+  h5::Handle coarse = make_group(root, "coarse");
+  const hsize_t rows = info.coarse_rows.size(), cols = info.coarse_cols.size();
+  impl_->coarse_positions = make_series(coarse.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3});
+  impl_->coarse_buffer.assign(rows * cols * 3, 0.0f);
+  return impl_->coarse_positions.valid() &&
+         write_index_list(coarse.get(), "rows", info.coarse_rows) &&
+         write_index_list(coarse.get(), "cols", info.coarse_cols);
+}
+
 FrameWriter::~FrameWriter() = default;  // an unfinished run leaves its .partial file
 
 void FrameWriter::write_frame(double time_s, std::span<const Vec3> positions_m,
-                              const FrameStats& stats) {
+                              const FrameStats& stats, std::span<const Vec3> coarse_m) {
   const auto start = std::chrono::steady_clock::now();
+  if (impl_->coarse_positions.valid()) {
+    std::vector<float>& coarse = impl_->coarse_buffer;
+    for (std::size_t i = 0; i < coarse_m.size() && 3 * i + 2 < coarse.size(); ++i)
+      for (int c = 0; c < 3; ++c) coarse[3 * i + c] = float(coarse_m[i][c]);
+    if (!append_row(impl_->coarse_positions.get(), hsize_t(frames_), H5T_NATIVE_FLOAT,
+                    coarse.data()))
+      throw IoError(
+          fmt::format("{}: writing frame {} failed (disk full?)", partial_path(), frames_));
+  }
   std::vector<float>& buffer = impl_->position_buffer;
   for (std::size_t i = 0; i < positions_m.size(); ++i)
     for (int c = 0; c < 3; ++c) buffer[3 * i + c] = float(positions_m[i][c]);

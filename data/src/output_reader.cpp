@@ -118,6 +118,25 @@ std::vector<Vec3> OutputReader::rest_positions() const {
   return to_vec3(read_all(impl_->file.get(), "/lattice/rest_positions"));
 }
 
+std::vector<Vec3> OutputReader::coarse_positions(int frame) const {
+  std::vector<hsize_t> dims;
+  const std::vector<double> flat = read_all(impl_->file.get(), "/coarse/positions", &dims);
+  if (dims.size() != 4 || frame < 0 || hsize_t(frame) >= dims[0]) return {};
+  const std::size_t per_frame = std::size_t(dims[1] * dims[2] * dims[3]);
+  return to_vec3(std::vector<double>(flat.begin() + long(frame * per_frame),
+                                     flat.begin() + long((frame + 1) * per_frame)));
+}
+
+std::vector<int> OutputReader::coarse_rows() const {
+  const std::vector<double> values = read_all(impl_->file.get(), "/coarse/rows");
+  return std::vector<int>(values.begin(), values.end());
+}
+
+std::vector<int> OutputReader::coarse_cols() const {
+  const std::vector<double> values = read_all(impl_->file.get(), "/coarse/cols");
+  return std::vector<int>(values.begin(), values.end());
+}
+
 std::vector<double> OutputReader::stat(const char* name) const {
   return read_all(impl_->file.get(), fmt::format("/stats/{}", name).c_str());
 }

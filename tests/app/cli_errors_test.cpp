@@ -118,9 +118,9 @@ const std::vector<BadInput>& cases() {
        "wind.gusts: gusting wind is not available in this version"},
       {"unbuilt_mode",
        kBase,
-       {"run", "SCENE", "--mode", "hybrid"},
-       "mode \"hybrid\" is not available in this version of flag-sim (available: \"mass-spring\", "
-       "\"infill\")"},
+       {"run", "SCENE", "--mode", "bullet"},
+       "mode \"bullet\" is not available in this version of flag-sim (available: \"hybrid\", "
+       "\"mass-spring\", \"infill\")"},
       {"infill_mode_with_wind",
        with("[wind]\nvelocity = [1, 0, 0]\n[[keyframe]]\ntime = 0.0\ncorners = "
             "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n"),

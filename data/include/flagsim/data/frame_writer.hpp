@@ -30,6 +30,9 @@ struct RunInfo {
   /// Column of `stages` that receives the time write_frame() itself takes
   /// (positions and time), or -1.
   int output_stage = -1;
+  /// Dense row / column index of each coarse row / column (hybrid mode); empty:
+  /// no /coarse group.
+  std::vector<int> coarse_rows, coarse_cols;
   /// Further numeric root attributes (substep_seconds, ...).
   std::vector<std::pair<std::string, double>> numbers;
 };
@@ -54,7 +57,9 @@ class FrameWriter {
 
   /// Appends one frame. positions_m: [J*K] row-major. The time spent writing is
   /// added to the output stage's column of this frame. Throws IoError on failure.
-  void write_frame(double time_s, std::span<const Vec3> positions_m, const FrameStats& stats);
+  /// coarse_m: [Jc*Kc] positions of the coarse nodes, when RunInfo named them.
+  void write_frame(double time_s, std::span<const Vec3> positions_m, const FrameStats& stats,
+                   std::span<const Vec3> coarse_m = {});
   /// Sets the status ("complete", "diverged", "interrupted"), adds `reason` as
   /// root attribute `status_reason` when non-empty, flushes, closes, renames
   /// the file to its final name and writes the XDMF sidecar. Throws IoError.
@@ -66,6 +71,7 @@ class FrameWriter {
 
  private:
   struct Impl;
+  bool write_coarse_layout(std::int64_t root, const RunInfo& info);  // root: an hid_t
   std::unique_ptr<Impl> impl_;
   std::string path_;
   Lattice lattice_;

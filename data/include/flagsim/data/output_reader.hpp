@@ -33,6 +33,11 @@ class OutputReader {
   /// Positions of frame t, [J*K] m (stored as float32).
   std::vector<Vec3> positions(int frame) const;
   std::vector<Vec3> rest_positions() const;
+  /// Hybrid runs: positions of the coarse nodes at frame t [Jc*Kc] and their
+  /// dense rows / columns; empty when the file has no /coarse group.
+  std::vector<Vec3> coarse_positions(int frame) const;
+  std::vector<int> coarse_rows() const;
+  std::vector<int> coarse_cols() const;
   /// A [T] float series under /stats ("max_strain", "wall_seconds", ...).
   std::vector<double> stat(const char* name) const;
   /// /stats/stage_seconds as [T][S], and the stage names.

@@ -1,0 +1,74 @@
+// `scene.mode = "hybrid"` end to end: spring-damper physics on flag.coarse, the
+// paper's infill on flag.fine, both written out.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "flagsim/data/output_reader.hpp"
+#include "process.hpp"
+#include "temp_dir.hpp"
+
+namespace flagsim::test {
+namespace {
+
+const std::vector<std::string> kHybrid = {
+    "run",      "--mode", "hybrid", "--set", "flag.fine=[33,49]", "--set", "flag.coarse=[9,13]",
+    "--frames", "16",     "--quiet"};
+
+std::vector<std::string> with_output(const std::string& path) {
+  std::vector<std::string> args = kHybrid;
+  args.push_back("-o");
+  args.push_back(path);
+  return args;
+}
+
+TEST(Hybrid, CoarseNodesAreWrittenAndTheDenseLatticePassesThroughThem) {
+  TempDir dir;
+  const ProcessResult result = run_flag_sim(with_output("h.h5"), dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const data::OutputReader reader(dir.file("h.h5"));
+  EXPECT_EQ(reader.attribute("mode"), "hybrid");
+  EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,wind,damping,infill");
+  ASSERT_EQ(reader.frame_count(), 16);
+  EXPECT_EQ(reader.coarse_rows(), (std::vector<int>{0, 4, 8, 12, 16, 20, 24, 28, 32}));
+  EXPECT_EQ(reader.coarse_cols().size(), 13u);
+  EXPECT_EQ(reader.coarse_cols().back(), 48);
+  for (int t : {0, 7, 15}) {
+    const auto dense = reader.positions(t);
+    const auto coarse = reader.coarse_positions(t);
+    ASSERT_EQ(coarse.size(), 9u * 13u);
+    for (int j = 0; j < 9; ++j)
+      for (int k = 0; k < 13; ++k)
+        EXPECT_EQ(dense[std::size_t(4 * j * 49 + 4 * k)], coarse[std::size_t(j * 13 + k)]);
+  }
+  for (double strain : reader.stat("max_strain")) EXPECT_LT(strain, 0.3);
+}
+
+TEST(Hybrid, SameSeedSameBytes) {
+  TempDir dir;
+  ASSERT_EQ(run_flag_sim(with_output("a.h5"), dir.path()).exit_code, 0);
+  ASSERT_EQ(run_flag_sim(with_output("b.h5"), dir.path()).exit_code, 0);
+  const data::OutputReader a(dir.file("a.h5")), b(dir.file("b.h5"));
+  for (int t = 0; t < a.frame_count(); ++t) {
+    const auto pa = a.positions(t), pb = b.positions(t);
+    EXPECT_EQ(0, std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(Vec3))) << t;
+  }
+}
+
+TEST(Hybrid, NeedsACoarseLatticeThatDividesTheFineOne) {
+  TempDir dir;
+  dir.write("s.toml", "[scene]\nmode = \"hybrid\"\n[flag]\nsize = [1.5, 1.0]\nfine = [33, 49]\n");
+  const ProcessResult missing =
+      run_flag_sim({"run", "s.toml", "--quiet", "-o", "x.h5"}, dir.path());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("hybrid mode needs flag.coarse"), std::string::npos) << missing.err;
+  const ProcessResult uneven = run_flag_sim(
+      {"run", "s.toml", "--set", "flag.coarse=[4,5]", "--quiet", "-o", "x.h5"}, dir.path());
+  EXPECT_EQ(uneven.exit_code, 2);
+  EXPECT_NE(uneven.err.find("coarse rows that work: 2, 3, 5, 9, 17, 33"), std::string::npos)
+      << uneven.err;
+  EXPECT_EQ(dir.entry_count(), 1);  // the scene only
+}
+
+}  // namespace
+}  // namespace flagsim::test
