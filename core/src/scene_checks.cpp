@@ -74,12 +74,13 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
   } else if (!scene.keyframes.empty()) {
     fail_at(root, "keyframe",
             "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
-  } else if (scene.infill) {
-    fail_at(root, "infill", "[infill] settings need a mode with the infill (\"infill\")");
-  } else if (scene.wrinkles) {
+  } else if (scene.mode == Mode::kMassSpring && scene.infill) {
+    fail_at(root, "infill",
+            "[infill] settings need a mode with the infill (\"hybrid\" or \"infill\")");
+  } else if (scene.mode == Mode::kMassSpring && scene.wrinkles) {
     fail_at(root, "wrinkles",
-            "wrinkles are made by the infill (paper 3.5); they need scene.mode = "
-            "\"infill\" (the hybrid mode is not available in this version)");
+            "wrinkles are made by the infill (paper 3.5); they need scene.mode = \"hybrid\" or "
+            "\"infill\"");
   }
 }
 

@@ -111,7 +111,9 @@ const std::vector<BadInput>& cases() {
       {"wrinkles_without_infill",
        with("[wrinkles]\nfiber_radius = 0.001\n"),
        {"run", "SCENE"},
-       "wrinkles: wrinkles are made by the infill (paper 3.5); they need scene.mode = \"infill\""},
+       "wrinkles: wrinkles are made by the infill (paper 3.5); they need scene.mode = \"hybrid\" "
+       "or "
+       "\"infill\""},
       {"unbuilt_gusts",
        with("[wind]\nvelocity = [5, 0, 0]\n[wind.gusts]\namplitude = 0.2\n"),
        {"run", "SCENE"},

@@ -70,5 +70,21 @@ TEST(Hybrid, NeedsACoarseLatticeThatDividesTheFineOne) {
   EXPECT_EQ(dir.entry_count(), 1);  // the scene only
 }
 
+TEST(Hybrid, TakesInfillAndWrinkleSettings) {
+  TempDir dir;
+  std::vector<std::string> args = with_output("w.h5");
+  for (const char* set : {"infill.relax_iterations=50", "wrinkles.fiber_radius=0.001",
+                          "wrinkles.fiber_modulus=1e9"}) {
+    args.push_back("--set");
+    args.push_back(set);
+  }
+  const ProcessResult result = run_flag_sim(args, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const data::OutputReader reader(dir.file("w.h5"));
+  EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,wind,damping,infill,wrinkles");
+  const auto stages = reader.stage_names();
+  EXPECT_EQ(stages[stages.size() - 3], "infill_3.5");
+}
+
 }  // namespace
 }  // namespace flagsim::test
