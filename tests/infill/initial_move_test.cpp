@@ -5,21 +5,18 @@
 #include <cmath>
 #include <vector>
 
+#include "fiber_fixtures.hpp"
+
 namespace flagsim::infill {
 namespace {
+
+using test::straight;
 
 TEST(InitialMove, EndWeightIsOneAtTheEndsZeroInTheMiddle) {
   EXPECT_EQ(end_weight(0.0), 1.0);
   EXPECT_EQ(end_weight(1.0), 1.0);
   EXPECT_EQ(end_weight(0.5), 0.0);
   EXPECT_EQ(end_weight(0.25), 0.5);
-}
-
-// A straight fiber of 8 segments of 0.1 m along x.
-inline std::vector<Vec3> straight(int segments = 8) {
-  std::vector<Vec3> x;
-  for (int i = 0; i <= segments; ++i) x.emplace_back(0.1 * i, 0.0, 0.0);
-  return x;
 }
 
 TEST(InitialMove, WeightedInitialMoveKeepsTheMiddleAndFollowsTheEnds) {

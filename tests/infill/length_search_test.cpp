@@ -5,17 +5,13 @@
 #include <cmath>
 #include <vector>
 
+#include "fiber_fixtures.hpp"
 #include "flagsim/infill/initial_move.hpp"
 
 namespace flagsim::infill {
 namespace {
 
-// A straight fiber of 8 segments of 0.1 m along x.
-inline std::vector<Vec3> straight(int segments = 8) {
-  std::vector<Vec3> x;
-  for (int i = 0; i <= segments; ++i) x.emplace_back(0.1 * i, 0.0, 0.0);
-  return x;
-}
+using test::straight;
 
 TEST(LengthSearch, LengthSearchWalksTowardTheTargetsWhileTheLengthImproves) {
   // Ends moved up together, middle left behind: the fiber is too long; the
