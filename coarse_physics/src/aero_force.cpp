@@ -25,20 +25,29 @@ Vec3 triangle_aero_force(const Vec3& x0, const Vec3& x1, const Vec3& x2,
   return along_c * c - along_u * u;
 }
 
-AeroForce::AeroForce(const ClothModel& model, const Wind& wind, double areal_density_kg_m2,
-                     double cloth_speed_bound_m_s)
+AeroForce::AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t seed,
+                     double areal_density_kg_m2, double cloth_speed_bound_m_s)
     : lattice_(model.lattice),
       wind_(wind),
+      field_(wind, seed),
       areal_density_kg_m2_(areal_density_kg_m2),
-      cloth_speed_bound_m_s_(cloth_speed_bound_m_s) {}
+      cloth_speed_bound_m_s_(cloth_speed_bound_m_s) {
+  air_m_s_.assign(lattice_.node_count(), wind.velocity_m_s);
+  begin_frame(0.0, lattice_.rest_positions());
+}
+
+void AeroForce::begin_frame(double time_s, std::span<const Vec3> x_m) {
+  if (field_.steady()) return;  // the mean wind everywhere, set once
+  for (std::size_t i = 0; i < air_m_s_.size(); ++i) air_m_s_[i] = field_.velocity(x_m[i], time_s);
+}
 
 void AeroForce::add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                            std::span<Vec3> forces_n) const {
   const int rows = lattice_.rows, cols = lattice_.cols;
-  const Vec3& wind = wind_.velocity_m_s;
   constexpr double kThird = 1.0 / 3.0;  // multiply: Eigen's "/ 3.0" is three divisions
   auto apply = [&](std::size_t a, std::size_t b, std::size_t c) {
-    const Vec3 u = wind - kThird * (v_m_s[a] + v_m_s[b] + v_m_s[c]);
+    const Vec3 u =
+        kThird * ((air_m_s_[a] + air_m_s_[b] + air_m_s_[c]) - (v_m_s[a] + v_m_s[b] + v_m_s[c]));
     const Vec3 third = kThird * triangle_aero_force(x_m[a], x_m[b], x_m[c], u, wind_);
     forces_n[a] += third;
     forces_n[b] += third;
@@ -57,7 +66,7 @@ void AeroForce::add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_
 double AeroForce::velocity_rate_bound() const {
   // |dF/dv| of a node ~ (its share of area) rho (C_d + C_l) |u|, over its mass
   // (density * area): rho (C_d + C_l) |u| / density, with |u| <= |wind| + cloth speed.
-  const double relative_speed = wind_.velocity_m_s.norm() + cloth_speed_bound_m_s_;
+  const double relative_speed = field_.speed_bound_m_s() + cloth_speed_bound_m_s_;
   return wind_.air_density_kg_m3 * (wind_.drag + wind_.lift) * relative_speed /
          areal_density_kg_m2_;
 }

@@ -30,10 +30,12 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
     // Speed bound for the stability estimate: the pole's speed plus the wind
     // speed again for a flapping fly end (it can move about as fast as the wind).
     const double cloth_speed = pins_.max_speed_m_s() + scene.wind->velocity_m_s.norm();
-    terms_.push_back(std::make_unique<AeroForce>(model_, *scene.wind,
+    terms_.push_back(std::make_unique<AeroForce>(model_, *scene.wind, scene.seed,
                                                  scene.flag.areal_density_kg_m2, cloth_speed));
   }
   for (const auto& term : terms_) effects_.emplace_back(term->name());
+  if (scene.wind && scene.wind->gusts) effects_.emplace_back("gusts");
+  if (scene.wind && scene.wind->turbulence) effects_.emplace_back("turbulence");
   if (model_.damping_per_s > 0.0) effects_.emplace_back("damping");
   if (scene.pole) effects_.emplace_back("pole");
 
@@ -84,6 +86,7 @@ void SpringDamperSolver::register_stages(StageTimes& times) {
 void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
   const double dt = substep_s();
   const double start = state.time_s;
+  for (const auto& term : terms_) term->begin_frame(start, state.x_m);
   for (int s = 0; s < substeps_per_frame_; ++s) {
     step(state, dt, times);
     // Time from the step count, so frames land exactly on t = n / fps.

@@ -97,8 +97,6 @@ void reject_unbuilt_features(const Scene& scene, const TableReader& root,
   const auto reject_table = [&](bool present, std::string_view dotted, std::string_view what) {
     if (present) fail_at(root, dotted, fmt::format("{} {}; remove the table", what, kHint));
   };
-  reject_table(scene.wind && scene.wind->gusts, "wind.gusts", "gusting wind");
-  reject_table(scene.wind && scene.wind->turbulence, "wind.turbulence", "turbulent wind");
   reject_table(scene.render.has_value(), "render", "rendering");
 }
 

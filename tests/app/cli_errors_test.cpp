@@ -114,10 +114,10 @@ const std::vector<BadInput>& cases() {
        "wrinkles: wrinkles are made by the infill (paper 3.5); they need scene.mode = \"hybrid\" "
        "or "
        "\"infill\""},
-      {"unbuilt_gusts",
-       with("[wind]\nvelocity = [5, 0, 0]\n[wind.gusts]\namplitude = 0.2\n"),
+      {"unbuilt_render",
+       with("[render]\nstyle = \"wireframe\"\n"),
        {"run", "SCENE"},
-       "wind.gusts: gusting wind is not available in this version"},
+       "render: rendering is not available in this version"},
       {"unbuilt_mode",
        kBase,
        {"run", "SCENE", "--mode", "bullet"},

@@ -75,6 +75,27 @@ TEST(Run, SameSceneAndSeedGiveIdenticalPositions) {
   EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(float)));  // the seed matters
 }
 
+TEST(Run, GustyTurbulentWindIsSeeded) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  const std::vector<std::string> wind = {"--set", "wind.gusts.amplitude=0.3", "--set",
+                                         "wind.turbulence.intensity=0.2", "--quiet"};
+  auto run = [&](const char* out, const char* seed) {
+    std::vector<std::string> args = {"run", "windy.toml", "-o", out, "--seed", seed};
+    args.insert(args.end(), wind.begin(), wind.end());
+    return run_flag_sim(args, dir.path());
+  };
+  ASSERT_EQ(run("a.h5", "3").exit_code, 0);
+  ASSERT_EQ(run("b.h5", "3").exit_code, 0);
+  ASSERT_EQ(run("c.h5", "4").exit_code, 0);
+  EXPECT_EQ(data::OutputReader(dir.file("a.h5")).attribute("effects"),
+            "stretch,gravity,wind,gusts,turbulence,damping");
+  const auto a = all_positions(dir.file("a.h5")), b = all_positions(dir.file("b.h5")),
+             c = all_positions(dir.file("c.h5"));
+  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float)));
+  EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(float)));
+}
+
 TEST(Run, SetOverridesAreRecordedInTheFile) {
   TempDir dir;
   dir.write("windy.toml", kWindy);

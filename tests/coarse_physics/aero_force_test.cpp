@@ -65,7 +65,7 @@ TEST(AeroForce, WholeFlatFlagFacingWindAndMovingWithIt) {
   const ClothModel model = make_cloth_model(scene);
   Wind wind = air(1.0, 0.5);
   wind.velocity_m_s = Vec3(0, 0, 10);
-  const AeroForce aero(model, wind, scene.flag.areal_density_kg_m2, 0.0);
+  const AeroForce aero(model, wind, 0, scene.flag.areal_density_kg_m2, 0.0);
   const std::vector<Vec3> x = model.lattice.rest_positions();
   std::vector<Vec3> v(x.size(), Vec3::Zero()), f(x.size(), Vec3::Zero());
   aero.add_forces(x, v, f);

@@ -91,8 +91,8 @@ TEST(SceneParser, CoarseMustDivideFineAndSaysWhatWould) {
 }
 
 TEST(SceneParser, UnbuiltFeaturesAreRejectedNotIgnored) {
-  EXPECT_NE(error_of(std::string(kMinimal) + "[wind.gusts]\namplitude = 0.2\n")
-                .find("wind.gusts: gusting wind is not available"),
+  EXPECT_NE(error_of(std::string(kMinimal) + "[render]\nstyle = \"shaded\"\n")
+                .find("render: rendering is not available"),
             std::string::npos);
   EXPECT_NE(error_of(kMinimal, {"scene.mode=bullet"}).find("mode \"bullet\" is not available"),
             std::string::npos);

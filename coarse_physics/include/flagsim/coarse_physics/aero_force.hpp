@@ -14,8 +14,17 @@
 // unchanged when n flips, so both faces of the cloth catch the wind. A flat
 // plate facing the flow gets 1/2 rho C_d A |u|^2, the textbook value. Each node
 // of the triangle receives a third of the force.
+//
+// The air's velocity comes from the WindField (mean, gusts, turbulence),
+// sampled at the nodes once per output frame (begin_frame) and averaged over
+// each triangle: gusts last seconds and turbulent eddies pass a node in about
+// length_scale / |U|, both far longer than a substep.
+#include <cstdint>
+#include <vector>
+
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/coarse_physics/wind_field.hpp"
 #include "flagsim/core/scene.hpp"
 
 namespace flagsim::physics {
@@ -29,9 +38,10 @@ class AeroForce final : public ForceTerm {
  public:
   /// @param cloth_speed_bound_m_s  an estimate of the largest node speed (pole
   ///        motion, flapping), used only for the stability bound
-  AeroForce(const ClothModel& model, const Wind& wind, double areal_density_kg_m2,
-            double cloth_speed_bound_m_s);
+  AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t seed,
+            double areal_density_kg_m2, double cloth_speed_bound_m_s);
   std::string_view name() const override { return "wind"; }
+  void begin_frame(double time_s, std::span<const Vec3> x_m) override;
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                   std::span<Vec3> forces_n) const override;
   double velocity_rate_bound() const override;
@@ -39,6 +49,8 @@ class AeroForce final : public ForceTerm {
  private:
   const Lattice& lattice_;
   Wind wind_;
+  WindField field_;
+  std::vector<Vec3> air_m_s_;  ///< [J*K] air velocity at the nodes this frame
   double areal_density_kg_m2_;
   double cloth_speed_bound_m_s_;
 };

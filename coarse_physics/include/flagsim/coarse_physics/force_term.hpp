@@ -16,6 +16,10 @@ class ForceTerm {
   virtual ~ForceTerm() = default;
   /// Name of the effect ("stretch", "gravity", ...): a column of /stats/stage_seconds.
   virtual std::string_view name() const = 0;
+  /// Called at the start of every output frame with its time and positions: a
+  /// term whose inputs change slowly (the wind field) refreshes them here
+  /// rather than in every substep.
+  virtual void begin_frame(double /*time_s*/, std::span<const Vec3> /*x_m*/) {}
   /// Adds this term's force on every node to `forces_n`.
   virtual void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                           std::span<Vec3> forces_n) const = 0;
