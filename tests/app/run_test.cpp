@@ -96,6 +96,19 @@ TEST(Run, GustyTurbulentWindIsSeeded) {
   EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(float)));
 }
 
+TEST(Run, NoWindNoWindStage) {
+  // An effect the scene does not call for is not constructed: no stage, no time.
+  TempDir dir;
+  dir.write("calm.toml",
+            "[scene]\nmode = \"mass-spring\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\n"
+            "fine = [9, 13]\n[gravity]\nacceleration = [0, -9.81, 0]\n");
+  ASSERT_EQ(run_flag_sim({"run", "calm.toml", "-o", "c.h5", "--quiet"}, dir.path()).exit_code, 0);
+  const data::OutputReader reader(dir.file("c.h5"));
+  EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,damping");
+  const std::vector<std::string> stages = {"stretch", "gravity", "integrate", "checks", "output"};
+  EXPECT_EQ(reader.stage_names(), stages);
+}
+
 TEST(Run, SetOverridesAreRecordedInTheFile) {
   TempDir dir;
   dir.write("windy.toml", kWindy);
