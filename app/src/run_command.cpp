@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <tuple>
 
 #include "commands.hpp"
 #include "flagsim/core/divergence.hpp"
@@ -61,13 +62,7 @@ int run_command(const RunOptions& options) {
   info.seed = scene.seed;
   info.stages = times.names();
   info.output_stage = output_stage;
-  if (scene.mode == Mode::kHybrid) {
-    const auto [coarse_rows, coarse_cols] = *scene.flag.coarse;
-    const int row_stride = (scene.flag.fine_rows - 1) / (coarse_rows - 1);
-    const int col_stride = (scene.flag.fine_cols - 1) / (coarse_cols - 1);
-    for (int j = 0; j < coarse_rows; ++j) info.coarse_rows.push_back(j * row_stride);
-    for (int k = 0; k < coarse_cols; ++k) info.coarse_cols.push_back(k * col_stride);
-  }
+  std::tie(info.coarse_rows, info.coarse_cols) = simulation->coarse_indices();
   info.numbers = simulation->numbers();
   info.numbers.emplace_back("fps", scene.fps);
   const Lattice& lattice = simulation->lattice();

@@ -11,6 +11,14 @@
 namespace flagsim::app {
 namespace {
 
+// Root attributes describing the spring-damper stepping, in both modes that use it.
+std::vector<std::pair<std::string, double>> stepping_numbers(
+    const physics::SpringDamperSolver& solver) {
+  return {{"substep_seconds", solver.substep_s()},
+          {"substeps_per_frame", double(solver.substeps_per_frame())},
+          {"stable_substep_seconds", solver.stable_substep_s()}};
+}
+
 // mode "mass-spring": the spring-damper integrator on the full lattice.
 class MassSpringSimulation final : public Simulation {
  public:
@@ -19,9 +27,7 @@ class MassSpringSimulation final : public Simulation {
   const Lattice& lattice() const override { return solver_.model().lattice; }
   std::vector<std::string> effects() const override { return solver_.effects(); }
   std::vector<std::pair<std::string, double>> numbers() const override {
-    return {{"substep_seconds", solver_.substep_s()},
-            {"substeps_per_frame", double(solver_.substeps_per_frame())},
-            {"stable_substep_seconds", solver_.stable_substep_s()}};
+    return stepping_numbers(solver_);
   }
   void register_stages(StageTimes& times) override { solver_.register_stages(times); }
   void advance_frame(StageTimes* times) override { solver_.advance_frame(state_, times); }
@@ -178,9 +184,7 @@ class HybridSimulation final : public Simulation {
     return effects;
   }
   std::vector<std::pair<std::string, double>> numbers() const override {
-    return {{"substep_seconds", physics_.substep_s()},
-            {"substeps_per_frame", double(physics_.substeps_per_frame())},
-            {"stable_substep_seconds", physics_.stable_substep_s()}};
+    return stepping_numbers(physics_);
   }
   void register_stages(StageTimes& times) override {
     physics_.register_stages(times);
@@ -193,6 +197,13 @@ class HybridSimulation final : public Simulation {
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
   std::span<const Vec3> coarse_positions() const override { return state_.x_m; }
+  std::pair<std::vector<int>, std::vector<int>> coarse_indices() const override {
+    const infill::CellGrid& grid = dense_.solver().grid();
+    std::pair<std::vector<int>, std::vector<int>> indices;
+    for (int j = 0; j < grid.coarse_rows; ++j) indices.first.push_back(j * grid.row_stride);
+    for (int k = 0; k < grid.coarse_cols; ++k) indices.second.push_back(k * grid.col_stride);
+    return indices;
+  }
   double kinetic_energy_j() const override { return physics_.kinetic_energy(state_); }
   std::string stepping_summary() const override {
     return fmt::format("{} substeps/frame of {:.3g} s on {} x {} coarse nodes",

@@ -31,6 +31,8 @@ class Simulation {
   virtual double kinetic_energy_j() const = 0;
   /// Positions of the coarse nodes [Jc*Kc], m, in the modes that simulate them; empty otherwise.
   virtual std::span<const Vec3> coarse_positions() const { return {}; }
+  /// Dense row and column index of each coarse row and column; empty with no coarse nodes.
+  virtual std::pair<std::vector<int>, std::vector<int>> coarse_indices() const { return {}; }
   /// What the summary line says about the stepping ("1001 substeps/frame of 3.3e-05 s").
   virtual std::string stepping_summary() const = 0;
 };
