@@ -97,12 +97,8 @@ void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
 void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times) {
   std::fill(forces_n_.begin(), forces_n_.end(), Vec3::Zero());
   for (std::size_t t = 0; t < terms_.size(); ++t) {
-    if (times && !term_stage_.empty()) {
-      ScopedStageTimer timer(*times, term_stage_[t]);
-      terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_);
-    } else {
-      terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_);
-    }
+    const int stage = term_stage_.empty() ? -1 : term_stage_[t];
+    run_timed(times, stage, [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
   }
   auto update = [&] {
     const double next_time = state.time_s + dt_s;
@@ -121,12 +117,7 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
     }
     state.time_s = next_time;
   };
-  if (times && update_stage_ >= 0) {
-    ScopedStageTimer timer(*times, update_stage_);
-    update();
-  } else {
-    update();
-  }
+  run_timed(times, update_stage_, update);
 }
 
 double SpringDamperSolver::kinetic_energy(const ClothState& state) const {

@@ -116,13 +116,9 @@ void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
 
 void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m,
                           StageTimes* times) {
-  auto timed = [&](int stage, auto&& work) {
-    if (times && stage_[stage] >= 0) {
-      ScopedStageTimer timer(*times, stage_[stage]);
-      work();
-    } else {
-      work();
-    }
+  auto timed = [&](int step, auto&& work) { run_timed(times, stage_[step], work); };
+  auto relax = [&] {  // 3.4
+    last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
   };
   std::copy(positions_m.begin(), positions_m.end(), previous_.begin());
   timed(0, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
@@ -140,15 +136,11 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
     for (const Fiber& col : cell_cols_)
       length_search(col, positions_m, previous_, kLengthTolerance);
   });
-  timed(3, [&] {  // 3.4
-    last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
-  });
+  timed(3, relax);
   if (!wrinkles_) return;  // no [wrinkles]: 3.5 is not scheduled at all
   for (int round = 0; round < rounds_; ++round) {
     timed(4, [&] { rewrinkle(positions_m); });
-    timed(3, [&] {
-      last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
-    });
+    timed(3, relax);
   }
 }
 

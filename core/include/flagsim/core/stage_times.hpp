@@ -45,4 +45,16 @@ class ScopedStageTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+/// Runs `work`, adding its wall time to `stage` when timing is on (times not
+/// null and the stage registered, stage >= 0); otherwise just runs it.
+template <typename Work>
+void run_timed(StageTimes* times, int stage, Work&& work) {
+  if (times && stage >= 0) {
+    ScopedStageTimer timer(*times, stage);
+    work();
+  } else {
+    work();
+  }
+}
+
 }  // namespace flagsim
