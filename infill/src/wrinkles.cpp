@@ -111,22 +111,18 @@ bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3
   if (across.norm() < 1e-12) return false;
   across.normalize();
   const double slack = fiber.rest_length_m() - chord;
-  int half_waves = 1;
-  double amplitude = 0.0;
-  if (slack > 0.0 && params.k_r4 > 0.0) {
-    const double m =
-        chord / std::numbers::pi * std::sqrt(params.k_prime * slack / (2.0 * params.k_r4));
-    // A half-wave needs 4 segments to be a wave and not a zigzag of the lattice.
-    const int finest = std::max(1, fiber.segments / 4);
-    half_waves = std::clamp(int(std::lround(m)), 1, finest);
-  }
   if (slack <= 0.0 || params.k_r4 <= 0.0) {  // no slack: straight, evenly spaced
     for (int i = 1; i < fiber.segments; ++i)
       positions_m[fiber.node(i)] = start + (double(i) / fiber.segments) * chord_vec;
     return true;
   }
+  const double m =
+      chord / std::numbers::pi * std::sqrt(params.k_prime * slack / (2.0 * params.k_r4));
+  // A half-wave needs 4 segments to be a wave and not a zigzag of the lattice.
+  const int finest = std::max(1, fiber.segments / 4);
+  const int half_waves = std::clamp(int(std::lround(m)), 1, finest);
   const Wave wave(chord, half_waves, 4 * fiber.segments);
-  amplitude = wave.amplitude_for(fiber.rest_length_m(), half_waves);
+  const double amplitude = wave.amplitude_for(fiber.rest_length_m(), half_waves);
   // The sign that best matches the present shape keeps a wrinkle on its side.
   double match = 0.0;
   for (int i = 1; i < fiber.segments; ++i) {
