@@ -13,7 +13,8 @@ packages=(
   cmake g++ make pkg-config
   libhdf5-dev libtomlplusplus-dev libcli11-dev libfmt-dev libeigen3-dev
   libgtest-dev libbenchmark-dev
-  python3-h5py python3-numpy
+  libbullet-dev libosmesa6-dev libpng-dev ffmpeg
+  python3-h5py python3-numpy python3-matplotlib
 )
 
 missing=()

@@ -2,46 +2,53 @@
 
 #include <fmt/format.h>
 
+#include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
-#include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/infill/infill_solver.hpp"
 #include "flagsim/infill/keyframes.hpp"
 
 namespace flagsim::app {
 namespace {
 
-// Root attributes describing the spring-damper stepping, in both modes that use it.
+// Root attributes describing the physics stepping, in every mode that has physics.
 std::vector<std::pair<std::string, double>> stepping_numbers(
-    const physics::SpringDamperSolver& solver) {
-  return {{"substep_seconds", solver.substep_s()},
-          {"substeps_per_frame", double(solver.substeps_per_frame())},
-          {"stable_substep_seconds", solver.stable_substep_s()}};
+    const physics::ClothIntegrator& physics) {
+  return {{"substep_seconds", physics.substep_s()},
+          {"substeps_per_frame", double(physics.substeps_per_frame())},
+          {"stable_substep_seconds", physics.stable_substep_s()}};
 }
 
-// mode "mass-spring": the spring-damper integrator on the full lattice.
-class MassSpringSimulation final : public Simulation {
+// The integrator that mode `mode` runs on a lattice: "mass-spring" is always
+// the spring-damper, "bullet" always Bullet, hybrid follows solver.backend.
+std::unique_ptr<physics::ClothIntegrator> integrator_for(const Scene& scene) {
+  Scene chosen = scene;
+  if (scene.mode == Mode::kMassSpring) chosen.solver.backend = "spring-damper";
+  if (scene.mode == Mode::kBullet) chosen.solver.backend = "bullet";
+  return physics::make_integrator(chosen);
+}
+
+// modes "mass-spring" and "bullet": physics on the full lattice.
+class FullLatticeSimulation final : public Simulation {
  public:
-  explicit MassSpringSimulation(const Scene& scene)
-      : solver_(scene), state_(solver_.initial_state(scene.seed)) {}
-  const Lattice& lattice() const override { return solver_.model().lattice; }
-  std::vector<std::string> effects() const override { return solver_.effects(); }
+  explicit FullLatticeSimulation(const Scene& scene) : physics_(integrator_for(scene)) {}
+  const Lattice& lattice() const override { return physics_->model().lattice; }
+  std::vector<std::string> effects() const override { return physics_->effects(); }
   std::vector<std::pair<std::string, double>> numbers() const override {
-    return stepping_numbers(solver_);
+    return stepping_numbers(*physics_);
   }
-  void register_stages(StageTimes& times) override { solver_.register_stages(times); }
-  void advance_frame(StageTimes* times) override { solver_.advance_frame(state_, times); }
-  std::span<const Vec3> positions() const override { return state_.x_m; }
-  std::span<const Vec3> velocities() const override { return state_.v_m_s; }
-  double kinetic_energy_j() const override { return solver_.kinetic_energy(state_); }
+  void register_stages(StageTimes& times) override { physics_->register_stages(times); }
+  void advance_frame(StageTimes* times) override { physics_->advance_frame(times); }
+  std::span<const Vec3> positions() const override { return physics_->state().x_m; }
+  std::span<const Vec3> velocities() const override { return physics_->state().v_m_s; }
+  double kinetic_energy_j() const override { return physics_->kinetic_energy(); }
   std::string stepping_summary() const override {
-    return fmt::format("{} substeps/frame of {:.3g} s", solver_.substeps_per_frame(),
-                       solver_.substep_s());
+    return fmt::format("{} substeps/frame of {:.3g} s", physics_->substeps_per_frame(),
+                       physics_->substep_s());
   }
 
  private:
-  physics::SpringDamperSolver solver_;
-  physics::ClothState state_;
+  std::unique_ptr<physics::ClothIntegrator> physics_;
 };
 
 // Step 3.5's constants from [wrinkles], or nullopt when the scene has none.
@@ -165,38 +172,38 @@ Scene coarse_scene_of(const Scene& scene) {
   return coarse;
 }
 
-// mode "hybrid": the spring-damper physics on flag.coarse, the paper's infill
+// mode "hybrid": the physics of solver.backend on flag.coarse, the paper's infill
 // on flag.fine every output frame, starting from the previous dense frame.
 class HybridSimulation final : public Simulation {
  public:
   explicit HybridSimulation(const Scene& scene)
       : coarse_scene_(coarse_scene_of(scene)),
-        physics_(coarse_scene_),
-        state_(physics_.initial_state(scene.seed)),
+        physics_(integrator_for(coarse_scene_)),
         dense_(scene, (*scene.flag.coarse)[0], (*scene.flag.coarse)[1], kDefaultRelaxSweeps) {
-    dense_.fill(state_.x_m, nullptr);  // frame 0: the coarse nodes where the physics starts
+    dense_.fill(physics_->state().x_m,
+                nullptr);  // frame 0: the coarse nodes where the physics starts
     dense_.forget_velocities();
   }
   const Lattice& lattice() const override { return dense_.lattice(); }
   std::vector<std::string> effects() const override {
-    std::vector<std::string> effects = physics_.effects();
+    std::vector<std::string> effects = physics_->effects();
     dense_.add_effects(effects);
     return effects;
   }
   std::vector<std::pair<std::string, double>> numbers() const override {
-    return stepping_numbers(physics_);
+    return stepping_numbers(*physics_);
   }
   void register_stages(StageTimes& times) override {
-    physics_.register_stages(times);
+    physics_->register_stages(times);
     dense_.register_stages(times);
   }
   void advance_frame(StageTimes* times) override {
-    physics_.advance_frame(state_, times);
-    dense_.fill(state_.x_m, times);
+    physics_->advance_frame(times);
+    dense_.fill(physics_->state().x_m, times);
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
-  std::span<const Vec3> coarse_positions() const override { return state_.x_m; }
+  std::span<const Vec3> coarse_positions() const override { return physics_->state().x_m; }
   std::pair<std::vector<int>, std::vector<int>> coarse_indices() const override {
     const infill::CellGrid& grid = dense_.solver().grid();
     std::pair<std::vector<int>, std::vector<int>> indices;
@@ -204,10 +211,10 @@ class HybridSimulation final : public Simulation {
     for (int k = 0; k < grid.coarse_cols; ++k) indices.second.push_back(k * grid.col_stride);
     return indices;
   }
-  double kinetic_energy_j() const override { return physics_.kinetic_energy(state_); }
+  double kinetic_energy_j() const override { return physics_->kinetic_energy(); }
   std::string stepping_summary() const override {
     return fmt::format("{} substeps/frame of {:.3g} s on {} x {} coarse nodes",
-                       physics_.substeps_per_frame(), physics_.substep_s(),
+                       physics_->substeps_per_frame(), physics_->substep_s(),
                        coarse_scene_.flag.fine_rows, coarse_scene_.flag.fine_cols);
   }
 
@@ -216,8 +223,7 @@ class HybridSimulation final : public Simulation {
   static constexpr int kDefaultRelaxSweeps = 200;
 
   Scene coarse_scene_;
-  physics::SpringDamperSolver physics_;
-  physics::ClothState state_;
+  std::unique_ptr<physics::ClothIntegrator> physics_;
   DenseInfill dense_;
 };
 
@@ -226,7 +232,7 @@ class HybridSimulation final : public Simulation {
 std::unique_ptr<Simulation> make_simulation(const Scene& scene) {
   if (scene.mode == Mode::kInfill) return std::make_unique<InfillSimulation>(scene);
   if (scene.mode == Mode::kHybrid) return std::make_unique<HybridSimulation>(scene);
-  return std::make_unique<MassSpringSimulation>(scene);
+  return std::make_unique<FullLatticeSimulation>(scene);
 }
 
 }  // namespace flagsim::app

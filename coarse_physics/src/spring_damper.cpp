@@ -4,11 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "flagsim/coarse_physics/aero_force.hpp"
-#include "flagsim/coarse_physics/bending_springs.hpp"
-#include "flagsim/coarse_physics/gravity_force.hpp"
+#include "flagsim/coarse_physics/force_terms.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
-#include "flagsim/coarse_physics/stretch_springs.hpp"
 
 namespace flagsim::physics {
 
@@ -20,24 +17,8 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
   forces_n_.assign(model_.lattice.node_count(), Vec3::Zero());
 
   // The pipeline of force terms: only what the scene calls for is constructed.
-  terms_.push_back(std::make_unique<StretchSprings>(model_));
-  if (scene.bending)
-    terms_.push_back(std::make_unique<BendingSprings>(model_, scene.bending->stiffness_n_m));
-  if (scene.gravity)
-    terms_.push_back(
-        std::make_unique<GravityForce>(model_.mass_kg, scene.gravity->acceleration_m_s2));
-  if (scene.wind) {
-    // Speed bound for the stability estimate: the pole's speed plus the wind
-    // speed again for a flapping fly end (it can move about as fast as the wind).
-    const double cloth_speed = pins_.max_speed_m_s() + scene.wind->velocity_m_s.norm();
-    terms_.push_back(std::make_unique<AeroForce>(model_, *scene.wind, scene.seed,
-                                                 scene.flag.areal_density_kg_m2, cloth_speed));
-  }
-  for (const auto& term : terms_) effects_.emplace_back(term->name());
-  if (scene.wind && scene.wind->gusts) effects_.emplace_back("gusts");
-  if (scene.wind && scene.wind->turbulence) effects_.emplace_back("turbulence");
-  if (model_.damping_per_s > 0.0) effects_.emplace_back("damping");
-  if (scene.pole) effects_.emplace_back("pole");
+  terms_ = make_force_terms(scene, model_, pins_);
+  effects_ = physics_effects(scene, model_);
 
   frame_s_ = 1.0 / scene.fps;
   stable_substep_s_ = compute_stable_substep();

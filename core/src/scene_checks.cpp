@@ -84,16 +84,8 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
   }
 }
 
-void reject_unbuilt_features(const Scene& scene, const TableReader& root,
-                             const TableReader& scene_in) {
+void reject_unbuilt_features(const Scene& scene, const TableReader& root) {
   constexpr const char* kHint = "is not available in this version of flag-sim";
-  if (scene.mode == Mode::kBullet)
-    scene_in.fail("mode", fmt::format("mode \"{}\" {} (available: \"hybrid\", \"mass-spring\", "
-                                      "\"infill\")",
-                                      to_string(scene.mode), kHint));
-  if (scene.solver.backend != "spring-damper")
-    fail_at(root, "solver.backend",
-            fmt::format("\"{}\" {} (available: \"spring-damper\")", scene.solver.backend, kHint));
   const auto reject_table = [&](bool present, std::string_view dotted, std::string_view what) {
     if (present) fail_at(root, dotted, fmt::format("{} {}; remove the table", what, kHint));
   };

@@ -10,7 +10,6 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
                        const TableReader& flag_in);
 
 /// Keys whose feature this build does not have are rejected, never silently ignored.
-void reject_unbuilt_features(const Scene& scene, const TableReader& root,
-                             const TableReader& scene_in);
+void reject_unbuilt_features(const Scene& scene, const TableReader& root);
 
 }  // namespace flagsim::detail

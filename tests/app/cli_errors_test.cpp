@@ -118,11 +118,10 @@ const std::vector<BadInput>& cases() {
        with("[render]\nstyle = \"wireframe\"\n"),
        {"run", "SCENE"},
        "render: rendering is not available in this version"},
-      {"unbuilt_mode",
+      {"unknown_backend",
        kBase,
-       {"run", "SCENE", "--mode", "bullet"},
-       "mode \"bullet\" is not available in this version of flag-sim (available: \"hybrid\", "
-       "\"mass-spring\", \"infill\")"},
+       {"run", "SCENE", "--set", "solver.backend=bulet"},
+       "solver.backend: expected one of \"spring-damper\", \"bullet\", got \"bulet\""},
       {"infill_mode_with_wind",
        with("[wind]\nvelocity = [1, 0, 0]\n[[keyframe]]\ntime = 0.0\ncorners = "
             "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n"),

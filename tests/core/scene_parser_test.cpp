@@ -94,8 +94,6 @@ TEST(SceneParser, UnbuiltFeaturesAreRejectedNotIgnored) {
   EXPECT_NE(error_of(std::string(kMinimal) + "[render]\nstyle = \"shaded\"\n")
                 .find("render: rendering is not available"),
             std::string::npos);
-  EXPECT_NE(error_of(kMinimal, {"scene.mode=bullet"}).find("mode \"bullet\" is not available"),
-            std::string::npos);
 }
 
 TEST(SceneParser, KeyInTheWrongTableIsPointedToItsHome) {

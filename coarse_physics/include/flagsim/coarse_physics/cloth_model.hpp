@@ -47,4 +47,25 @@ ClothModel make_cloth_model(const Scene& scene);
 /// Node indices held by `pin` (contract: flag.pin).
 std::vector<std::uint8_t> pinned_nodes(const Lattice& lattice, PinSet pin);
 
+/// Calls visit(a, b, k, rest) for every link of `family`; links on the border of
+/// the lattice (half a strip of cloth) get k * edge_factor.
+template <typename Visit>
+void for_each_link(const ClothModel& model, const LinkFamily& family, Visit&& visit) {
+  const Lattice& lattice = model.lattice;
+  const int k_begin = family.col_step < 0 ? 1 : 0;
+  const int k_end = lattice.cols - (family.col_step > 0 ? 1 : 0);
+  const int j_end = lattice.rows - family.row_step;
+  const long offset = long(family.row_step) * lattice.cols + family.col_step;
+  const double edge_k = family.stiffness_n_m * family.edge_factor;
+  for (int j = 0; j < j_end; ++j) {
+    const bool border_row = family.row_step == 0 && (j == 0 || j == lattice.rows - 1);
+    for (int k = k_begin; k < k_end; ++k) {
+      const bool border = border_row || (family.col_step == 0 && (k == 0 || k == lattice.cols - 1));
+      const std::size_t a = lattice.index(j, k);
+      visit(a, std::size_t(long(a) + offset), border ? edge_k : family.stiffness_n_m,
+            family.rest_length_m);
+    }
+  }
+}
+
 }  // namespace flagsim::physics

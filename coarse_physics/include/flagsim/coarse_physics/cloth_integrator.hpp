@@ -1,0 +1,61 @@
+#pragma once
+// What advances a cloth in time, whichever backend does it (contract:
+// solver.backend): our spring-damper integrator or Bullet's soft body. Both
+// build the same cloth from a scene (ClothModel: masses from the area a node
+// stands for, link stiffness from the stretch and shear moduli and the spacing)
+// and own their state, which starts at rest plus the scene's seeded
+// perturbation.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/coarse_physics/spring_damper.hpp"
+#include "flagsim/core/scene.hpp"
+#include "flagsim/core/stage_times.hpp"
+
+namespace flagsim::physics {
+
+class ClothIntegrator {
+ public:
+  virtual ~ClothIntegrator() = default;
+  virtual const ClothModel& model() const = 0;
+  /// Effects in pipeline order ("stretch,gravity,wind,damping,pole").
+  virtual const std::vector<std::string>& effects() const = 0;
+  /// Positions [J*K] m, velocities [J*K] m/s and time after the last frame.
+  virtual const ClothState& state() const = 0;
+  /// Largest substep the backend treats as faithful (stability or stiffness limit), s.
+  virtual double stable_substep_s() const = 0;
+  virtual int substeps_per_frame() const = 0;
+  virtual double substep_s() const = 0;
+  /// Registers one timing column per stage.
+  virtual void register_stages(StageTimes& times) = 0;
+  /// Advances by one output frame (1/fps).
+  virtual void advance_frame(StageTimes* times) = 0;
+  /// Kinetic energy, J.
+  double kinetic_energy() const;
+};
+
+/// The integrator of `scene.solver.backend` for the scene's fine lattice.
+std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene);
+
+/// The spring-damper backend behind the ClothIntegrator interface.
+class SpringDamperIntegrator final : public ClothIntegrator {
+ public:
+  explicit SpringDamperIntegrator(const Scene& scene)
+      : solver_(scene), state_(solver_.initial_state(scene.seed)) {}
+  const ClothModel& model() const override { return solver_.model(); }
+  const std::vector<std::string>& effects() const override { return solver_.effects(); }
+  const ClothState& state() const override { return state_; }
+  double stable_substep_s() const override { return solver_.stable_substep_s(); }
+  int substeps_per_frame() const override { return solver_.substeps_per_frame(); }
+  double substep_s() const override { return solver_.substep_s(); }
+  void register_stages(StageTimes& times) override { solver_.register_stages(times); }
+  void advance_frame(StageTimes* times) override { solver_.advance_frame(state_, times); }
+
+ private:
+  SpringDamperSolver solver_;
+  ClothState state_;
+};
+
+}  // namespace flagsim::physics

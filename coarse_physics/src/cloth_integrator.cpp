@@ -1,0 +1,21 @@
+#include "flagsim/coarse_physics/cloth_integrator.hpp"
+
+#include "flagsim/coarse_physics/bullet_cloth.hpp"
+
+namespace flagsim::physics {
+
+double ClothIntegrator::kinetic_energy() const {
+  const ClothState& s = state();
+  const std::vector<double>& mass = model().mass_kg;
+  double total = 0.0;
+  for (std::size_t i = 0; i < s.v_m_s.size(); ++i)
+    total += 0.5 * mass[i] * s.v_m_s[i].squaredNorm();
+  return total;
+}
+
+std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene) {
+  if (scene.solver.backend == "bullet") return std::make_unique<BulletCloth>(scene);
+  return std::make_unique<SpringDamperIntegrator>(scene);
+}
+
+}  // namespace flagsim::physics
