@@ -29,12 +29,22 @@ InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_
         if (j < 0 || k < 0 || j >= grid.coarse_rows || k >= grid.coarse_cols) return -1;
         return std::ptrdiff_t(grid.dense_index(fine, j, k));
       };
+      // A cell is named by its top-left coarse node; it exists when that node
+      // has coarse neighbours to the right and below.
+      const auto cell_at = [&](int j, int k) -> std::ptrdiff_t {
+        if (j < 0 || k < 0 || j + 1 >= grid.coarse_rows || k + 1 >= grid.coarse_cols) return -1;
+        return coarse_at(j, k);
+      };
       if (kc + 1 < grid.coarse_cols && cs > 1)
-        edges_.push_back(
-            {{n, 1, cs, fine.spacing_x_m}, coarse_at(jc, kc - 1), coarse_at(jc, kc + 2)});
+        edges_.push_back({{n, 1, cs, fine.spacing_x_m},
+                          coarse_at(jc, kc - 1),
+                          coarse_at(jc, kc + 2),
+                          {cell_at(jc - 1, kc), cell_at(jc, kc)}});
       if (jc + 1 < grid.coarse_rows && rs > 1)
-        edges_.push_back(
-            {{n, cols, rs, fine.spacing_y_m}, coarse_at(jc - 1, kc), coarse_at(jc + 2, kc)});
+        edges_.push_back({{n, cols, rs, fine.spacing_y_m},
+                          coarse_at(jc - 1, kc),
+                          coarse_at(jc + 2, kc),
+                          {cell_at(jc, kc - 1), cell_at(jc, kc)}});
     }
   }
   for (int jc = 0; jc + 1 < grid.coarse_rows; ++jc) {
@@ -51,6 +61,10 @@ InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_
   previous_.resize(fine.node_count());
   coarse_start_.resize(coarse_dense_.size());
   coarse_step_.resize(coarse_dense_.size());
+}
+
+void InfillSolver::hold(std::span<const std::uint8_t> nodes) {
+  for (std::size_t i = 0; i < held_.size(); ++i) held_[i] = held_[i] || nodes[i];
 }
 
 void InfillSolver::register_stages(StageTimes& times) {
@@ -125,8 +139,15 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
     for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
       positions_m[coarse_dense_[c]] = coarse_target_m[c];
     for (const Edge& edge : edges_) {
-      move_edge(edge.fiber, edge.before, edge.after, positions_m, previous_, kLengthTolerance);
-      relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
+      // The cloth's normal at the edge: its cells' normals, averaged.
+      Vec3 normal = Vec3::Zero();
+      for (std::ptrdiff_t cell : edge.cells)
+        if (cell >= 0) normal += cell_normal(std::size_t(cell), positions_m).normalized();
+      move_edge(edge.fiber, edge.before, edge.after, normal, positions_m, previous_,
+                kLengthTolerance);
+      // A lone edge got the paper's fiber steps and needs 3.4; an arc is exact.
+      if (edge.before < 0 && edge.after < 0)
+        relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
     }
   });
   timed(1, [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2

@@ -4,11 +4,13 @@
 //
 // One deformation step runs, in order:
 //  3.1 boundary: every cell edge (the dense nodes between two neighbouring
-//      coarse nodes) placed from its ends (boundary.hpp), then relaxed as a
-//      fiber. Edges shared by two cells are computed once: the lattice is seamless.
-//  3.2 initial move of each cell's interior: the motions of a node's row ends
-//      and column ends (on the cell's edges), interpolated and weighted by
-//      end_weight(), averaged.
+//      coarse nodes) placed from its ends (boundary.hpp). Edges shared by two
+//      cells are computed once: the lattice is seamless.
+//  3.2 initial move of each cell's interior, in the cell's co-moving frame:
+//      the rigid motion that best carries the cell's edges moves its previous
+//      interior, then the rest of the motions of a node's row ends and column
+//      ends (on the cell's edges), interpolated and weighted by end_weight(),
+//      averaged, is added.
 //  3.3 length search on every row, then every column, of every cell.
 //  3.4 relaxation of the whole lattice with the coarse nodes held.
 //  3.5 (only when given WrinkleParams) re-move by the bending feature on every
@@ -18,6 +20,7 @@
 // each run in full. The state carried between frames is the dense lattice
 // itself: every fill starts from the previous one, which is what lets a shape
 // persist (property 2). Work buffers are kept: fill() does not allocate.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -54,6 +57,11 @@ class InfillSolver {
   InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps,
                std::optional<WrinkleParams> wrinkles = std::nullopt, int rounds = 2);
 
+  /// Holds these dense nodes ([J*K], 1 = held) in 3.4 as well as the coarse
+  /// ones: the pinned nodes of a physics-driven cloth, which lie on coarse
+  /// lines between pinned coarse nodes and are placed there by 3.1.
+  void hold(std::span<const std::uint8_t> nodes);
+
   /// Registers the timing columns "infill_3.1" ... "infill_3.4" (and "infill_3.5").
   void register_stages(StageTimes& times);
 
@@ -85,12 +93,13 @@ class InfillSolver {
     Fiber fiber;
     std::ptrdiff_t before = -1;
     std::ptrdiff_t after = -1;
+    std::array<std::ptrdiff_t, 2> cells = {-1, -1};  ///< top-left dense node of the cells beside it
   };
 
   std::vector<Edge> edges_;         ///< every cell edge, once
   std::vector<Fiber> cell_rows_;    ///< interior rows of every cell, ends on the cell's side edges
   std::vector<Fiber> cell_cols_;    ///< interior columns of every cell
-  std::vector<std::uint8_t> held_;  ///< coarse nodes
+  std::vector<std::uint8_t> held_;  ///< coarse nodes and pinned ones
   std::vector<std::size_t> coarse_dense_;  ///< dense index of each coarse node
   std::vector<Vec3> previous_;             ///< the lattice before the current deformation step
   std::vector<Vec3> coarse_start_, coarse_step_;

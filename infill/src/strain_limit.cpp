@@ -1,0 +1,50 @@
+#include "flagsim/infill/strain_limit.hpp"
+
+#include <cmath>
+
+namespace flagsim::infill {
+namespace {
+
+// Shortens a-b to `longest` if it is longer; returns whether it moved anything.
+bool shorten(Vec3& a, Vec3& b, bool a_fixed, bool b_fixed, double longest) {
+  const Vec3 d = b - a;
+  const double length = d.norm();
+  // (A link just shortened may come out an ulp long: that is not "too long".)
+  if (length <= longest * (1.0 + 1e-12) || (a_fixed && b_fixed)) return false;
+  const double shrink = 1.0 - longest / length;
+  if (a_fixed) {
+    b -= shrink * d;
+  } else if (b_fixed) {
+    a += shrink * d;
+  } else {
+    a += (0.5 * shrink) * d;
+    b -= (0.5 * shrink) * d;
+  }
+  return true;
+}
+
+}  // namespace
+
+int limit_stretch(const Lattice& lattice, std::span<const std::uint8_t> fixed,
+                  std::span<Vec3> positions_m, double max_strain, int max_passes) {
+  const double longest_x = (1.0 + max_strain) * lattice.spacing_x_m;
+  const double longest_y = (1.0 + max_strain) * lattice.spacing_y_m;
+  for (int pass = 1; pass <= max_passes; ++pass) {
+    bool moved = false;
+    for (int j = 0; j < lattice.rows; ++j) {
+      for (int k = 0; k < lattice.cols; ++k) {
+        const std::size_t a = lattice.index(j, k);
+        if (k + 1 < lattice.cols)
+          moved |= shorten(positions_m[a], positions_m[a + 1], fixed[a], fixed[a + 1], longest_x);
+        if (j + 1 < lattice.rows) {
+          const std::size_t b = lattice.index(j + 1, k);
+          moved |= shorten(positions_m[a], positions_m[b], fixed[a], fixed[b], longest_y);
+        }
+      }
+    }
+    if (!moved) return pass;
+  }
+  return max_passes;
+}
+
+}  // namespace flagsim::infill
