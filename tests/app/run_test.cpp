@@ -52,8 +52,8 @@ TEST(Run, DefaultSceneWritesTheContractFile) {
   EXPECT_TRUE(fs::exists(dir.file("out/default.xdmf")));
   const data::OutputReader reader(path);
   EXPECT_EQ(reader.attribute("status"), "complete");
-  EXPECT_EQ(reader.attribute("mode"), "mass-spring");
-  EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,wind,damping");
+  EXPECT_EQ(reader.attribute("mode"), "hybrid");
+  EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,wind,damping,infill");
   EXPECT_EQ(reader.frame_count(), 3);
   EXPECT_EQ(reader.seed(), 1);
   EXPECT_NE(reader.attribute("scene").find("frames = 3"), std::string::npos);

@@ -28,7 +28,10 @@ fine = [9, 13]
 TEST(SceneParser, DefaultSceneIsValidAndMeansWhatItSays) {
   const Scene scene = parse_scene(default_scene_toml(), kDefaultSceneName);
   EXPECT_EQ(scene.name, "default");
-  EXPECT_EQ(scene.mode, Mode::kMassSpring);
+  EXPECT_EQ(scene.mode, Mode::kHybrid);
+  EXPECT_EQ(scene.flag.fine_rows, 129);
+  EXPECT_EQ(scene.flag.fine_cols, 193);
+  EXPECT_EQ(*scene.flag.coarse, (std::array<int, 2>{9, 13}));
   EXPECT_DOUBLE_EQ(scene.flag.width_m, 1.5);
   EXPECT_DOUBLE_EQ(scene.flag.height_m, 1.0);
   EXPECT_EQ(scene.flag.pin, PinSet::kLeft);
