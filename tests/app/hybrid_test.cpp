@@ -132,3 +132,50 @@ TEST(Hybrid, TakesInfillAndWrinkleSettings) {
 
 }  // namespace
 }  // namespace flagsim::test
+
+namespace flagsim::test {
+namespace {
+
+TEST(Hybrid, OnlyTheStagesTheSceneCallsFor) {
+  // No [wind], no [wrinkles]: no wind stage, no step 3.5, with either backend.
+  TempDir dir;
+  dir.write("calm.toml",
+            "[scene]\nmode = \"hybrid\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\n"
+            "fine = [17, 25]\ncoarse = [9, 13]\n[gravity]\n");
+  const std::vector<std::string> infill = {"coarse_slack", "infill_3.1", "infill_3.2", "infill_3.3",
+                                           "infill_3.4",   "checks",     "output"};
+  for (const char* backend : {"spring-damper", "bullet"}) {
+    ASSERT_EQ(run_flag_sim({"run", "calm.toml", "-o", "c.h5", "--quiet", "--set",
+                            std::string("solver.backend=") + backend},
+                           dir.path())
+                  .exit_code,
+              0);
+    const data::OutputReader reader(dir.file("c.h5"));
+    EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,damping,infill") << backend;
+    std::vector<std::string> stages =
+        std::string(backend) == "bullet"
+            ? std::vector<std::string>{"bullet_step"}
+            : std::vector<std::string>{"stretch", "gravity", "integrate"};
+    stages.insert(stages.end(), infill.begin(), infill.end());
+    EXPECT_EQ(reader.stage_names(), stages) << backend;
+  }
+}
+
+TEST(Bullet, FullLatticeModeRunsAndRecordsItsStepping) {
+  TempDir dir;
+  const ProcessResult result = run_flag_sim({"run", "--mode", "bullet", "--set", "flag.fine=[9,13]",
+                                             "--frames", "10", "--quiet", "-o", "b.h5"},
+                                            dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const data::OutputReader reader(dir.file("b.h5"));
+  EXPECT_EQ(reader.attribute("mode"), "bullet");
+  EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,wind,damping");
+  const double substep = reader.number_attribute("substep_seconds", 0);
+  EXPECT_GT(substep, 0.0);
+  EXPECT_LE(substep, 0.5 * reader.number_attribute("stable_substep_seconds", 0));
+  EXPECT_TRUE(reader.coarse_positions(0).empty());  // no /coarse group on the full lattice
+  for (double strain : reader.stat("max_strain")) EXPECT_LT(strain, 0.1);
+}
+
+}  // namespace
+}  // namespace flagsim::test
