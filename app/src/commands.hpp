@@ -10,13 +10,16 @@
 namespace flagsim::app {
 
 struct RunOptions {
-  std::string scene_path;           ///< empty: the embedded default scene
-  std::string output_path;          ///< -o; empty: output.file, else out/<name>.h5
-  std::optional<std::string> mode;  ///< --mode
-  std::optional<long long> frames;  ///< --frames
-  std::optional<long long> seed;    ///< --seed
-  std::vector<std::string> sets;    ///< --set KEY=VALUE
-  std::string render;               ///< --render
+  std::string scene_path;                     ///< empty: the embedded default scene
+  std::string output_path;                    ///< -o; empty: output.file, else out/<name>.h5
+  std::optional<std::string> mode;            ///< --mode
+  std::optional<long long> frames;            ///< --frames
+  std::optional<long long> seed;              ///< --seed
+  std::vector<std::string> sets;              ///< --set KEY=VALUE
+  std::string render;                         ///< --render OUT.mp4|DIR
+  std::optional<std::string> render_size;     ///< --size WxH
+  std::optional<std::string> render_style;    ///< --style
+  std::optional<std::string> render_texture;  ///< --texture
   bool quiet = false;
 };
 
@@ -27,5 +30,7 @@ int run_command(const RunOptions& options);
 int validate_command(const std::string& scene_path);
 int info_command(const std::string& path);
 int scene_command(bool print_default);
+struct RenderRequest;
+int render_command(const std::string& h5_path, const RenderRequest& request);
 
 }  // namespace flagsim::app

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/version.hpp"
+#include "render_command.hpp"
 
 namespace {
 
@@ -32,7 +33,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--frames", run.frames, "Number of frames to write, including t = 0");
   run_cmd->add_option("--seed", run.seed, "Override scene.seed");
   run_cmd->add_option("--set", run.sets, "Override a scene key: KEY=VALUE (TOML value)");
-  run_cmd->add_option("--render", run.render, "Render frames to OUT.mp4 or DIR");
+  run_cmd->add_option("--render", run.render, "Also render the frames to OUT.mp4 or DIR (PNGs)");
+  run_cmd->add_option("--size", run.render_size, "Rendered image size WxH (default 1280x720)");
+  run_cmd->add_option("--style", run.render_style, "wireframe, shaded (default) or textured");
+  run_cmd->add_option("--texture", run.render_texture, "PNG for --style textured");
   run_cmd->add_flag("-q,--quiet", run.quiet, "No progress line, only the summary");
 
   std::string validate_path;
@@ -47,10 +51,21 @@ int main(int argc, char** argv) {
   CLI::App* scene_cmd = cli.add_subcommand("scene", "Print a scene");
   scene_cmd->add_flag("--default", print_default, "Print the embedded default scene");
 
+  std::string render_input;
+  flagsim::app::RenderRequest render;
+  CLI::App* render_cmd =
+      cli.add_subcommand("render", "Draw the frames of an output file to PNGs or an MP4");
+  render_cmd->add_option("file", render_input, "flag-sim output (.h5)")->required();
+  render_cmd->add_option("-o,--output", render.output, "OUT.mp4, or a directory for PNG frames")
+      ->required();
+  render_cmd->add_option("--size", render.size, "Image size WxH (default 1280x720)");
+  render_cmd->add_option("--style", render.style, "wireframe, shaded (default) or textured");
+  render_cmd->add_option("--texture", render.texture, "PNG for --style textured");
+
   // Commands of the contract that this version does not have yet: a clear
   // message and exit 2 rather than "unknown subcommand".
   std::vector<CLI::App*> unavailable;
-  for (const char* name : {"render", "compare", "sweep"}) {
+  for (const char* name : {"compare", "sweep"}) {
     CLI::App* cmd =
         cli.add_subcommand(name, fmt::format("({} is not available in this version)", name));
     cmd->allow_extras();
@@ -74,6 +89,7 @@ int main(int argc, char** argv) {
     if (*validate_cmd) return flagsim::app::validate_command(validate_path);
     if (*info_cmd) return flagsim::app::info_command(info_path);
     if (*scene_cmd) return flagsim::app::scene_command(print_default);
+    if (*render_cmd) return flagsim::app::render_command(render_input, render);
     for (CLI::App* cmd : unavailable)
       if (*cmd)
         return fail(

@@ -16,6 +16,7 @@
 #include "flagsim/data/frame_writer.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
+#include "render_command.hpp"
 #include "simulation.hpp"
 
 namespace flagsim::app {
@@ -45,8 +46,15 @@ int run_command(const RunOptions& options) {
   if (options.frames && *options.frames < 1)
     throw UserError(fmt::format("--frames {}: expected at least 1 frame", *options.frames));
   const Scene scene = load_scene(options.scene_path, overrides_of(options));
-  if (!options.render.empty())
-    throw UserError("--render: rendering is not available in this version of flag-sim");
+  // A render is checked before the run: a bad --size must not cost a simulation.
+  std::optional<RenderPlan> render_plan;
+  if (!options.render.empty()) {
+    render_plan = plan_render(
+        {options.render, options.render_size, options.render_style, options.render_texture},
+        scene.render ? &*scene.render : nullptr);
+  } else if (options.render_size || options.render_style || options.render_texture) {
+    throw UserError("--size, --style and --texture go with --render OUT.mp4|DIR");
+  }
 
   const std::unique_ptr<Simulation> simulation = make_simulation(scene);
   StageTimes times;
@@ -110,14 +118,21 @@ int run_command(const RunOptions& options) {
   writer.finish(status, reason);
 
   const double ms_per_frame = 1000.0 * total_wall_s / std::max(1, writer.frames_written());
+  // Rendered from the file, as `flag-sim render` would: the camera frames the
+  // whole run, and the renderer never reaches into the simulation.
+  std::string rendered;
+  if (render_plan && status != "interrupted" && writer.frames_written() > 0)
+    rendered = render_file(writer.path(), *render_plan);
   if (status == "diverged") {
     fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n", reason,
                writer.frames_written(), writer.path());
+    if (!rendered.empty()) fmt::print("{}\n", rendered);
     return int(ExitCode::kDiverged);
   }
   fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
              status, writer.frames_written(), lattice.rows, lattice.cols, to_string(scene.mode),
              ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
+  if (!rendered.empty()) fmt::print("{}\n", rendered);
   return status == "interrupted" ? int(ExitCode::kInterrupted) : int(ExitCode::kSuccess);
 }
 

@@ -84,12 +84,4 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
   }
 }
 
-void reject_unbuilt_features(const Scene& scene, const TableReader& root) {
-  constexpr const char* kHint = "is not available in this version of flag-sim";
-  const auto reject_table = [&](bool present, std::string_view dotted, std::string_view what) {
-    if (present) fail_at(root, dotted, fmt::format("{} {}; remove the table", what, kHint));
-  };
-  reject_table(scene.render.has_value(), "render", "rendering");
-}
-
 }  // namespace flagsim::detail

@@ -9,7 +9,4 @@ namespace flagsim::detail {
 void check_consistency(const Scene& scene, const TableReader& root, const TableReader& scene_in,
                        const TableReader& flag_in);
 
-/// Keys whose feature this build does not have are rejected, never silently ignored.
-void reject_unbuilt_features(const Scene& scene, const TableReader& root);
-
 }  // namespace flagsim::detail

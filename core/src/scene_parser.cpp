@@ -320,9 +320,6 @@ Scene build_scene(const toml::table& root, std::string_view source_path) {
   read_run_tables(in, scene);
   in.finish(kAllKeys);
 
-  // What this build cannot do is said first: "hybrid needs flag.coarse" would
-  // send the user fixing a scene that could not run anyway.
-  detail::reject_unbuilt_features(scene, in);
   detail::check_consistency(scene, in, scene_in, flag_in);
 
   std::ostringstream text;

@@ -1,0 +1,167 @@
+#include "render_command.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <regex>
+
+#include "commands.hpp"
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/data/output_reader.hpp"
+#include "flagsim/render/camera.hpp"
+#include "flagsim/render/offscreen_context.hpp"
+#include "flagsim/render/png_io.hpp"
+#include "flagsim/render/video_writer.hpp"
+
+namespace flagsim::app {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr int kMinSide = 16, kMaxSide = 8192;
+
+std::pair<int, int> parse_size(const std::string& text) {
+  static const std::regex pattern(R"(^\s*(\d{1,6})\s*[xX]\s*(\d{1,6})\s*$)");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern))
+    throw UserError(fmt::format("--size {}: expected WxH in pixels, e.g. 1280x720", text));
+  const int w = std::stoi(match[1]), h = std::stoi(match[2]);
+  if (w < kMinSide || h < kMinSide || w > kMaxSide || h > kMaxSide)
+    throw UserError(
+        fmt::format("--size {}: each side must be {} to {} pixels", text, kMinSide, kMaxSide));
+  return {w, h};
+}
+
+bool ends_with(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// The directory that will hold the output: created when missing (never more
+// than the request asked for), then checked for writing.
+void prepare_directory(const fs::path& dir, const std::string& what) {
+  std::error_code error;
+  if (!dir.empty() && !fs::exists(dir, error)) fs::create_directories(dir, error);
+  const fs::path probe = dir.empty() ? fs::path(".") : dir;
+  if (error || !fs::is_directory(probe) || access(probe.c_str(), W_OK) != 0)
+    throw UserError(fmt::format("-o {}: cannot write to {} (check the path and its permissions)",
+                                what, probe.string()));
+}
+
+}  // namespace
+
+RenderPlan plan_render(const RenderRequest& request, const Render* scene_render) {
+  RenderPlan plan;
+  plan.output = request.output;
+  if (plan.output.empty()) throw UserError("render: -o OUT.mp4 or -o DIR is required");
+  plan.video = ends_with(plan.output, ".mp4");
+  if (scene_render) {
+    plan.width = scene_render->size_px[0];
+    plan.height = scene_render->size_px[1];
+    plan.style = *render::parse_style(scene_render->style);
+  }
+  if (request.size) std::tie(plan.width, plan.height) = parse_size(*request.size);
+  if (request.style) {
+    const auto style = render::parse_style(*request.style);
+    if (!style)
+      throw UserError(fmt::format(
+          "--style {}: expected one of \"wireframe\", \"shaded\", \"textured\"", *request.style));
+    plan.style = *style;
+  }
+  if (plan.video && (plan.width % 2 || plan.height % 2))
+    throw UserError(
+        fmt::format("--size {}x{}: an MP4 (H.264, yuv420p) needs an even width and height",
+                    plan.width, plan.height));
+  std::string texture = request.texture.value_or(scene_render ? scene_render->texture : "");
+  if (!texture.empty()) {
+    if (plan.style != render::Style::kTextured)
+      throw UserError(fmt::format("--texture {}: a texture needs --style textured", texture));
+    plan.texture = render::read_png(texture);
+  }
+  if (plan.video) {
+    if (render::find_ffmpeg().empty())
+      throw UserError(
+          fmt::format("-o {}: MP4 needs ffmpeg, which is not on PATH (apt-get "
+                      "install ffmpeg), or give -o a directory for PNG frames",
+                      plan.output));
+    prepare_directory(fs::path(plan.output).parent_path(), plan.output);
+    if (fs::is_directory(plan.output))
+      throw UserError(fmt::format("-o {}: is a directory", plan.output));
+  } else {
+    prepare_directory(fs::path(plan.output), plan.output);
+  }
+  return plan;
+}
+
+std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
+  using Clock = std::chrono::steady_clock;
+  const data::OutputReader reader(h5_path);
+  const int frames = reader.frame_count(), rows = reader.rows(), cols = reader.cols();
+  // The pole, when the cloth hangs from its left edge (contract: flag.pin).
+  bool pole = false;
+  try {
+    pole = parse_scene(reader.attribute("scene"), h5_path).flag.pin == PinSet::kLeft;
+  } catch (const UserError&) {  // a scene this version cannot read: no pole
+  }
+  // Frame the whole run: every node of every frame, and the ground below it.
+  render::Bounds bounds;
+  for (int t = 0; t < frames; ++t) bounds.add(reader.positions(t));
+  if (bounds.empty()) throw UserError(fmt::format("{}: has no frames to render", h5_path));
+  render::RenderOptions options;
+  options.style = plan.style;
+  options.texture = plan.texture;
+  options.camera = render::frame_bounds(bounds, double(plan.width) / plan.height);
+  options.ground_y_m = std::min(0.0, bounds.low.y() - 0.05);
+
+  const auto context = render::make_osmesa_context(plan.width, plan.height);
+  render::FrameRenderer renderer(*context, options);
+  std::optional<render::VideoWriter> video;
+  if (plan.video)
+    video.emplace(plan.output, plan.width, plan.height, reader.number_attribute("fps", 30.0));
+  double draw_s = 0.0, encode_s = 0.0;
+  for (int t = 0; t < frames; ++t) {
+    const std::vector<Vec3> positions = reader.positions(t);
+    render::FrameView view{rows, cols, positions, std::nullopt};
+    if (pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
+    const Clock::time_point start = Clock::now();
+    const render::Image image = renderer.render(view);
+    const Clock::time_point drawn = Clock::now();
+    if (video) {
+      video->write(image);
+    } else {
+      render::write_png((fs::path(plan.output) / fmt::format("frame_{:05d}.png", t)).string(),
+                        image);
+    }
+    draw_s += std::chrono::duration<double>(drawn - start).count();
+    encode_s += std::chrono::duration<double>(Clock::now() - drawn).count();
+  }
+  const Clock::time_point closing = Clock::now();
+  if (video) video->finish();
+  encode_s += std::chrono::duration<double>(Clock::now() - closing).count();
+  const double n = std::max(1, frames);
+  return fmt::format(
+      "rendered {} frames ({}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}", frames,
+      render::to_string(plan.style), plan.width, plan.height, 1e3 * draw_s / n, 1e3 * encode_s / n,
+      plan.video ? "H.264" : "PNG", plan.output);
+}
+
+int render_command(const std::string& h5_path, const RenderRequest& request) {
+  // The file first: a missing or foreign input is the first thing to say.
+  const Render* scene_render = nullptr;
+  std::optional<Scene> scene;
+  {
+    const data::OutputReader reader(h5_path);
+    try {
+      scene = parse_scene(reader.attribute("scene"), h5_path);
+    } catch (const UserError&) {
+    }
+  }
+  if (scene && scene->render) scene_render = &*scene->render;
+  const RenderPlan plan = plan_render(request, scene_render);
+  fmt::print("{}\n", render_file(h5_path, plan));
+  return int(ExitCode::kSuccess);
+}
+
+}  // namespace flagsim::app

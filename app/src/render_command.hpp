@@ -1,0 +1,37 @@
+#pragma once
+// `flag-sim render` and `run --render`: the frames of an output file drawn to
+// numbered PNGs in a directory or to an MP4.
+#include <optional>
+#include <string>
+
+#include "flagsim/core/scene.hpp"
+#include "flagsim/render/frame_renderer.hpp"
+#include "flagsim/render/image.hpp"
+
+namespace flagsim::app {
+
+struct RenderRequest {
+  std::string output;                  ///< OUT.mp4, or a directory for frame_NNNNN.png
+  std::optional<std::string> size;     ///< --size WxH
+  std::optional<std::string> style;    ///< --style
+  std::optional<std::string> texture;  ///< --texture PNG
+};
+
+/// Everything a render needs, checked before anything is written or run.
+struct RenderPlan {
+  std::string output;
+  bool video = false;
+  int width = 1280, height = 720;
+  render::Style style = render::Style::kShaded;
+  render::Image texture;  ///< empty: the built-in pattern
+};
+
+/// Checks a request against the scene's [render] defaults (style, size,
+/// texture, when `scene_render` is given) and prepares the output destination.
+/// Throws UserError (exit 2) naming the bad flag or key; creates nothing on error.
+RenderPlan plan_render(const RenderRequest& request, const Render* scene_render);
+
+/// Draws every frame of the file `h5_path` as planned. Returns the summary line.
+std::string render_file(const std::string& h5_path, const RenderPlan& plan);
+
+}  // namespace flagsim::app

@@ -1,0 +1,37 @@
+#pragma once
+// Where the image is seen from: a pinhole camera (perspective, vertical field
+// of view), and the automatic framing of a whole run.
+#include <span>
+
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim::render {
+
+struct Camera {
+  Vec3 eye_m = Vec3(0.75, 1.5, 4.0);
+  Vec3 target_m = Vec3(0.75, 1.5, 0.0);
+  Vec3 up = Vec3::UnitY();
+  double vertical_fov_deg = 35.0;
+};
+
+/// Axis-aligned bounds of a set of points, m.
+struct Bounds {
+  Vec3 low = Vec3::Constant(1e300);
+  Vec3 high = Vec3::Constant(-1e300);
+  void add(const Vec3& p) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  void add(std::span<const Vec3> points) {
+    for (const Vec3& p : points) add(p);
+  }
+  bool empty() const { return low.x() > high.x(); }
+};
+
+/// A camera that sees all of `bounds` in an image of the given aspect
+/// (width / height): in front of the cloth (+z), a little to the fly side and
+/// above, looking at the centre of the bounds, the bounding sphere filling
+/// about 90% of the smaller field of view.
+Camera frame_bounds(const Bounds& bounds, double aspect);
+
+}  // namespace flagsim::render

@@ -1,0 +1,61 @@
+#pragma once
+// Draws one frame of a cloth: the lattice as lines (wireframe), as a lit
+// surface with smooth normals, both faces lit (shaded), or with a texture
+// (textured); a pole along the pinned edge down to the ground, a ground plane
+// and a sky, so that motion reads at a glance.
+//
+// The renderer sees only a FrameView: positions and the lattice's shape, from
+// an output file or a running simulation's snapshot; never the simulator.
+#include <optional>
+#include <span>
+#include <string>
+
+#include "flagsim/core/vec3.hpp"
+#include "flagsim/render/camera.hpp"
+#include "flagsim/render/image.hpp"
+#include "flagsim/render/offscreen_context.hpp"
+
+namespace flagsim::render {
+
+enum class Style { kWireframe, kShaded, kTextured };
+
+/// "wireframe" / "shaded" / "textured", or nullopt.
+std::optional<Style> parse_style(const std::string& name);
+const char* to_string(Style style);
+
+/// One frame: J x K positions, m, row-major (contract lattice order), and the
+/// top of the pole (drawn down to the ground) if the cloth hangs on one.
+struct FrameView {
+  int rows = 0;
+  int cols = 0;
+  std::span<const Vec3> positions_m;
+  std::optional<Vec3> pole_top_m;
+};
+
+struct RenderOptions {
+  Style style = Style::kShaded;
+  Camera camera;
+  /// Texture for kTextured; empty: the built-in flag pattern.
+  Image texture;
+  /// Height of the ground plane, m.
+  double ground_y_m = 0.0;
+};
+
+class FrameRenderer {
+ public:
+  /// Draws into `context` (kept, not owned).
+  FrameRenderer(OffscreenContext& context, RenderOptions options);
+  Image render(const FrameView& frame);
+
+ private:
+  void draw_backdrop() const;
+  void draw_pole(const Vec3& top) const;
+  void draw_cloth(const FrameView& frame);
+
+  OffscreenContext& context_;
+  RenderOptions options_;
+  unsigned texture_id_ = 0;
+  std::vector<Vec3> normals_;
+};
+
+}  // namespace flagsim::render

@@ -1,0 +1,27 @@
+#pragma once
+// A headless OpenGL context: the one thing the renderer needs from a platform.
+// Today's provider is OSMesa (Mesa's software rasterizer, no display, no GPU);
+// newer Mesa releases drop OSMesa, and an EGL provider (EGL_MESA_platform_surfaceless
+// or a pbuffer) can implement the same two calls.
+#include <memory>
+
+#include "flagsim/render/image.hpp"
+
+namespace flagsim::render {
+
+class OffscreenContext {
+ public:
+  virtual ~OffscreenContext() = default;
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  /// Makes the context current on this thread; GL 1.x calls draw into it.
+  virtual void make_current() = 0;
+  /// Finishes drawing and returns the colour buffer, row 0 at the top.
+  virtual Image read_rgb() = 0;
+};
+
+/// An OSMesa context of `width` x `height` pixels with a depth buffer.
+/// Throws UserError when OSMesa cannot create one.
+std::unique_ptr<OffscreenContext> make_osmesa_context(int width, int height);
+
+}  // namespace flagsim::render

@@ -1,0 +1,229 @@
+#include "flagsim/render/frame_renderer.hpp"
+
+#include <GL/gl.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "flagsim/render/flag_pattern.hpp"
+
+namespace flagsim::render {
+namespace {
+
+constexpr float kSky[3] = {0.62f, 0.76f, 0.90f};
+constexpr float kGround[3] = {0.42f, 0.50f, 0.38f};
+constexpr float kGroundLine[3] = {0.36f, 0.43f, 0.33f};
+constexpr float kCloth[3] = {0.80f, 0.12f, 0.10f};
+constexpr float kWire[3] = {0.10f, 0.12f, 0.20f};
+constexpr float kPole[3] = {0.55f, 0.55f, 0.58f};
+
+// gluLookAt: the view matrix, column-major.
+void look_at(const Camera& camera) {
+  const Vec3 f = (camera.target_m - camera.eye_m).normalized();
+  const Vec3 s = f.cross(camera.up).normalized();
+  const Vec3 u = s.cross(f);
+  const double m[16] = {s.x(), u.x(), -f.x(), 0, s.y(), u.y(), -f.y(), 0,
+                        s.z(), u.z(), -f.z(), 0, 0,     0,     0,      1};
+  glMultMatrixd(m);
+  glTranslated(-camera.eye_m.x(), -camera.eye_m.y(), -camera.eye_m.z());
+}
+
+void set_material(const float rgb[3]) {
+  const float diffuse[4] = {rgb[0], rgb[1], rgb[2], 1.0f};
+  const float ambient[4] = {0.35f * rgb[0], 0.35f * rgb[1], 0.35f * rgb[2], 1.0f};
+  const float specular[4] = {0.08f, 0.08f, 0.08f, 1.0f};
+  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, diffuse);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, ambient);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, specular);
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 20.0f);
+}
+
+}  // namespace
+
+std::optional<Style> parse_style(const std::string& name) {
+  if (name == "wireframe") return Style::kWireframe;
+  if (name == "shaded") return Style::kShaded;
+  if (name == "textured") return Style::kTextured;
+  return std::nullopt;
+}
+
+const char* to_string(Style style) {
+  switch (style) {
+    case Style::kWireframe:
+      return "wireframe";
+    case Style::kShaded:
+      return "shaded";
+    case Style::kTextured:
+      return "textured";
+  }
+  return "?";
+}
+
+FrameRenderer::FrameRenderer(OffscreenContext& context, RenderOptions options)
+    : context_(context), options_(std::move(options)) {
+  context_.make_current();
+  if (options_.style == Style::kTextured) {
+    if (options_.texture.rgb.empty()) options_.texture = flag_pattern();
+    GLuint id = 0;
+    glGenTextures(1, &id);
+    texture_id_ = id;
+    glBindTexture(GL_TEXTURE_2D, id);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, options_.texture.width, options_.texture.height, 0,
+                 GL_RGB, GL_UNSIGNED_BYTE, options_.texture.rgb.data());
+  }
+}
+
+Image FrameRenderer::render(const FrameView& frame) {
+  context_.make_current();
+  const int w = context_.width(), h = context_.height();
+  glViewport(0, 0, w, h);
+  glClearColor(kSky[0], kSky[1], kSky[2], 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  const double near = 0.05, far = 500.0;
+  const double top =
+      near * std::tan(0.5 * options_.camera.vertical_fov_deg * std::numbers::pi / 180);
+  const double right = top * double(w) / double(h);
+  glFrustum(-right, right, -top, top, near, far);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  look_at(options_.camera);
+
+  // A light from over the viewer's left shoulder, fixed to the world.
+  const Vec3 to_light =
+      (options_.camera.eye_m - options_.camera.target_m).normalized() + Vec3(-0.4, 0.8, 0.0);
+  const float light_dir[4] = {float(to_light.x()), float(to_light.y()), float(to_light.z()), 0.0f};
+  const float white[4] = {0.85f, 0.85f, 0.85f, 1.0f};
+  const float dim[4] = {0.35f, 0.35f, 0.35f, 1.0f};
+  glLightfv(GL_LIGHT0, GL_POSITION, light_dir);
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+  glLightfv(GL_LIGHT0, GL_SPECULAR, white);
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, dim);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);  // the back of the flag is lit too
+  glEnable(GL_LIGHT0);
+  glEnable(GL_NORMALIZE);
+  glShadeModel(GL_SMOOTH);
+
+  draw_backdrop();
+  if (frame.pole_top_m) draw_pole(*frame.pole_top_m);
+  draw_cloth(frame);
+  return context_.read_rgb();
+}
+
+void FrameRenderer::draw_backdrop() const {
+  // Ground: a large plane at ground height with lines every metre, unlit.
+  glDisable(GL_LIGHTING);
+  const double y = options_.ground_y_m, extent = 100.0;
+  const Vec3 centre = options_.camera.target_m;
+  glColor3fv(kGround);
+  glBegin(GL_QUADS);
+  glVertex3d(centre.x() - extent, y, centre.z() - extent);
+  glVertex3d(centre.x() - extent, y, centre.z() + extent);
+  glVertex3d(centre.x() + extent, y, centre.z() + extent);
+  glVertex3d(centre.x() + extent, y, centre.z() - extent);
+  glEnd();
+  glEnable(GL_POLYGON_OFFSET_LINE);
+  glPolygonOffset(-1.0f, -1.0f);
+  glColor3fv(kGroundLine);
+  glBegin(GL_LINES);
+  const double x0 = std::floor(centre.x()) - 20, z0 = std::floor(centre.z()) - 20;
+  for (int i = 0; i <= 40; ++i) {
+    glVertex3d(x0 + i, y + 1e-3, z0);
+    glVertex3d(x0 + i, y + 1e-3, z0 + 40);
+    glVertex3d(x0, y + 1e-3, z0 + i);
+    glVertex3d(x0 + 40, y + 1e-3, z0 + i);
+  }
+  glEnd();
+  glDisable(GL_POLYGON_OFFSET_LINE);
+}
+
+void FrameRenderer::draw_pole(const Vec3& top) const {
+  const double radius = 0.02, bottom = options_.ground_y_m;
+  glEnable(GL_LIGHTING);
+  set_material(kPole);
+  glBegin(GL_QUAD_STRIP);
+  for (int i = 0; i <= 16; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 16;
+    const double c = std::cos(a), s = std::sin(a);
+    glNormal3d(c, 0.0, s);
+    glVertex3d(top.x() - radius + radius * c, bottom, top.z() + radius * s);
+    glVertex3d(top.x() - radius + radius * c, top.y() + 0.05, top.z() + radius * s);
+  }
+  glEnd();
+}
+
+void FrameRenderer::draw_cloth(const FrameView& frame) {
+  const int rows = frame.rows, cols = frame.cols;
+  const std::span<const Vec3> x = frame.positions_m;
+  auto at = [&](int j, int k) -> const Vec3& { return x[std::size_t(j) * cols + std::size_t(k)]; };
+  std::vector<GLuint> indices;
+  if (options_.style == Style::kWireframe) {
+    glDisable(GL_LIGHTING);
+    glColor3fv(kWire);
+    for (int j = 0; j < rows; ++j)
+      for (int k = 0; k < cols; ++k) {
+        const GLuint a = GLuint(j * cols + k);
+        if (k + 1 < cols) indices.insert(indices.end(), {a, a + 1});
+        if (j + 1 < rows) indices.insert(indices.end(), {a, a + GLuint(cols)});
+      }
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glVertexPointer(3, GL_DOUBLE, sizeof(Vec3), x.data());
+    glDrawElements(GL_LINES, GLsizei(indices.size()), GL_UNSIGNED_INT, indices.data());
+    glDisableClientState(GL_VERTEX_ARRAY);
+    return;
+  }
+  // Smooth normals: central differences across the lattice (one-sided at the border).
+  normals_.resize(x.size());
+  for (int j = 0; j < rows; ++j)
+    for (int k = 0; k < cols; ++k) {
+      const Vec3 along = at(j, std::min(k + 1, cols - 1)) - at(j, std::max(k - 1, 0));
+      const Vec3 down = at(std::min(j + 1, rows - 1), k) - at(std::max(j - 1, 0), k);
+      normals_[std::size_t(j) * cols + std::size_t(k)] = down.cross(along);
+    }
+  for (int j = 0; j + 1 < rows; ++j)
+    for (int k = 0; k + 1 < cols; ++k) {
+      const GLuint a = GLuint(j * cols + k), b = a + 1, c = a + GLuint(cols), d = c + 1;
+      indices.insert(indices.end(), {a, c, b, b, c, d});
+    }
+  std::vector<float> uv;
+  glEnable(GL_LIGHTING);
+  if (options_.style == Style::kTextured) {
+    const float white[3] = {1.0f, 1.0f, 1.0f};
+    set_material(white);
+    uv.reserve(x.size() * 2);
+    for (int j = 0; j < rows; ++j)
+      for (int k = 0; k < cols; ++k) {
+        uv.push_back(float(k) / float(cols - 1));
+        uv.push_back(float(j) / float(rows - 1));
+      }
+    glEnable(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, texture_id_);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+    glTexCoordPointer(2, GL_FLOAT, 0, uv.data());
+  } else {
+    set_material(kCloth);
+  }
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glVertexPointer(3, GL_DOUBLE, sizeof(Vec3), x.data());
+  glNormalPointer(GL_DOUBLE, sizeof(Vec3), normals_.data());
+  glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, indices.data());
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  if (options_.style == Style::kTextured) {
+    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+    glDisable(GL_TEXTURE_2D);
+  }
+}
+
+}  // namespace flagsim::render
