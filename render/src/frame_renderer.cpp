@@ -2,6 +2,7 @@
 
 #include <GL/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -17,6 +18,7 @@ constexpr float kGroundLine[3] = {0.36f, 0.43f, 0.33f};
 constexpr float kCloth[3] = {0.80f, 0.12f, 0.10f};
 constexpr float kWire[3] = {0.10f, 0.12f, 0.20f};
 constexpr float kPole[3] = {0.55f, 0.55f, 0.58f};
+constexpr double kMinLineGap = 5.0;  // pixels between drawn wireframe lines
 
 // gluLookAt: the view matrix, column-major.
 void look_at(const Camera& camera) {
@@ -161,6 +163,31 @@ void FrameRenderer::draw_pole(const Vec3& top) const {
   glEnd();
 }
 
+int FrameRenderer::wire_step(const FrameView& frame) const {
+  // Mean on-screen length of a link along the middle row and column, pixels.
+  const Camera& camera = options_.camera;
+  const Vec3 f = (camera.target_m - camera.eye_m).normalized();
+  const Vec3 s = f.cross(camera.up).normalized();
+  const Vec3 u = s.cross(f);
+  const double focal =
+      0.5 * context_.height() / std::tan(0.5 * camera.vertical_fov_deg * std::numbers::pi / 180);
+  auto screen = [&](const Vec3& p) {
+    const Vec3 d = p - camera.eye_m;
+    const double depth = std::max(d.dot(f), 1e-6);
+    return Eigen::Vector2d(focal * d.dot(s) / depth, focal * d.dot(u) / depth);
+  };
+  const int rows = frame.rows, cols = frame.cols;
+  auto at = [&](int j, int k) { return frame.positions_m[std::size_t(j) * cols + std::size_t(k)]; };
+  double length = 0.0;
+  int links = 0;
+  for (int k = 0; k + 1 < cols; ++k, ++links)
+    length += (screen(at(rows / 2, k + 1)) - screen(at(rows / 2, k))).norm();
+  for (int j = 0; j + 1 < rows; ++j, ++links)
+    length += (screen(at(j + 1, cols / 2)) - screen(at(j, cols / 2))).norm();
+  const double per_link = links ? length / links : kMinLineGap;
+  return std::max(1, int(std::ceil(kMinLineGap / std::max(per_link, 1e-9))));
+}
+
 void FrameRenderer::draw_cloth(const FrameView& frame) {
   const int rows = frame.rows, cols = frame.cols;
   const std::span<const Vec3> x = frame.positions_m;
@@ -169,11 +196,16 @@ void FrameRenderer::draw_cloth(const FrameView& frame) {
   if (options_.style == Style::kWireframe) {
     glDisable(GL_LIGHTING);
     glColor3fv(kWire);
+    // Every lattice line while they are at least kMinLineGap pixels apart on
+    // screen; on a lattice finer than that, every n-th line (and the border):
+    // a solid blob of lines shows nothing.
+    const int step = wire_step(frame);
+    auto drawn = [&](int i, int n) { return i % step == 0 || i == n - 1; };
     for (int j = 0; j < rows; ++j)
       for (int k = 0; k < cols; ++k) {
         const GLuint a = GLuint(j * cols + k);
-        if (k + 1 < cols) indices.insert(indices.end(), {a, a + 1});
-        if (j + 1 < rows) indices.insert(indices.end(), {a, a + GLuint(cols)});
+        if (drawn(j, rows) && k + 1 < cols) indices.insert(indices.end(), {a, a + 1});
+        if (drawn(k, cols) && j + 1 < rows) indices.insert(indices.end(), {a, a + GLuint(cols)});
       }
     glEnableClientState(GL_VERTEX_ARRAY);
     glVertexPointer(3, GL_DOUBLE, sizeof(Vec3), x.data());

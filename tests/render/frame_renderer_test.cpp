@@ -95,6 +95,22 @@ TEST(FrameRenderer, WireframeDrawsLinesWhereShadedFillsTheFlag) {
   EXPECT_LT(lines, 0.35);
 }
 
+TEST(FrameRenderer, AFineLatticeIsDrawnWithFewerLinesNotAsABlob) {
+  // 129 x 193 nodes over ~140 px: every line would paint the whole flag.
+  const Lattice lattice = Lattice::rectangle(129, 193, 1.5, 1.0, Vec3(0.0, 2.0, 0.0));
+  const std::vector<Vec3> x = lattice.rest_positions();
+  const auto context = make_osmesa_context(kWidth, kHeight);
+  RenderOptions options;
+  options.style = Style::kWireframe;
+  options.camera = straight_on();
+  FrameRenderer renderer(*context, options);
+  const Image image = renderer.render({lattice.rows, lattice.cols, x, std::nullopt});
+  const double lines =
+      fraction_inside(image, 0.0, [](const std::uint8_t* p) { return p[0] + p[1] + p[2] < 150; });
+  EXPECT_GT(lines, 0.1);
+  EXPECT_LT(lines, 0.5);
+}
+
 TEST(FrameRenderer, TexturedShowsTheTexturesColours) {
   Image texture(64, 64);  // quadrants: red, green / blue, yellow
   for (int y = 0; y < 64; ++y)

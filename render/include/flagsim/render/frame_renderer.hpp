@@ -51,6 +51,8 @@ class FrameRenderer {
   void draw_backdrop() const;
   void draw_pole(const Vec3& top) const;
   void draw_cloth(const FrameView& frame);
+  /// Every how many lattice lines the wireframe draws one.
+  int wire_step(const FrameView& frame) const;
 
   OffscreenContext& context_;
   RenderOptions options_;
