@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/version.hpp"
+#include "flagsim/data/frame_writer.hpp"
 #include "render_command.hpp"
 
 namespace {
@@ -20,6 +21,7 @@ int fail(ExitCode code, const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  flagsim::data::skip_hdf5_exit_cleanup();
   CLI::App cli{"flag-sim: flag and cloth simulation (Agui, Nishii & Nakajima 1990 hybrid)"};
   cli.set_version_flag("--version", std::string(flagsim::version()));
   cli.require_subcommand(1);

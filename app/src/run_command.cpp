@@ -82,6 +82,7 @@ int run_command(const RunOptions& options) {
   double max_strain_seen = 0.0, total_wall_s = 0.0;
   auto since_write = std::chrono::steady_clock::now();
   std::string status = "complete", reason;
+  bool out_of_room = false;
   for (int frame = 0; frame < frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     if (frame > 0) simulation->advance_frame(&times);
@@ -98,6 +99,13 @@ int run_command(const RunOptions& options) {
     if (status == "diverged") break;
     max_strain_seen = std::max(max_strain_seen, strain.max);
     if (frame % scene.output.every == 0) {
+      if (auto full = writer.out_of_room()) {  // stop while the file is whole
+        status = "interrupted";
+        reason = fmt::format("stopped before frame {} (t = {:.4g} s): {}", frame, frame / scene.fps,
+                             *full);
+        out_of_room = true;
+        break;
+      }
       data::FrameStats stats{strain.max, strain.mean, times.seconds(), seconds_since(since_write),
                              simulation->kinetic_energy_j()};
       // Frame times are n / fps exactly, not the sum of the substeps.
@@ -123,6 +131,11 @@ int run_command(const RunOptions& options) {
   std::string rendered;
   if (render_plan && status != "interrupted" && writer.frames_written() > 0)
     rendered = render_file(writer.path(), *render_plan);
+  if (out_of_room) {
+    fmt::print(stderr, "error: {}: {}; the {} frames written are kept\n", writer.path(), reason,
+               writer.frames_written());
+    return int(ExitCode::kIoFailure);
+  }
   if (status == "diverged") {
     fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n", reason,
                writer.frames_written(), writer.path());

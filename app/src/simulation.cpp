@@ -199,7 +199,7 @@ class HybridSimulation final : public Simulation {
   }
   void register_stages(StageTimes& times) override {
     physics_->register_stages(times);
-    slack_stage_ = times.add("coarse_slack");
+    if (needs_slack()) slack_stage_ = times.add("coarse_slack");
     dense_.register_stages(times);
   }
   void advance_frame(StageTimes* times) override {
@@ -244,8 +244,15 @@ class HybridSimulation final : public Simulation {
 
   Scene coarse_scene_;
   std::unique_ptr<physics::ClothIntegrator> physics_;
+  // With the coarse lattice equal to the fine one there are no fibers to fill
+  // between coarse nodes, and no slack to make.
+  bool needs_slack() const {
+    const infill::CellGrid& grid = dense_.solver().grid();
+    return grid.row_stride > 1 || grid.col_stride > 1;
+  }
   void make_reachable() {
     reachable_ = physics_->state().x_m;
+    if (!needs_slack()) return;
     infill::limit_stretch(physics_->model().lattice, physics_->model().pinned, reachable_,
                           -kCoarseSlack, kSlackPasses);
   }

@@ -1,8 +1,12 @@
 #include "flagsim/data/frame_writer.hpp"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 
@@ -209,6 +213,32 @@ void FrameWriter::write_frame(double time_s, std::span<const Vec3> positions_m,
   impl_->times.push_back(time_s);
   if (frames_ % flush_every_ == 0 && H5Fflush(impl_->file.get(), H5F_SCOPE_GLOBAL) < 0)
     throw IoError(fmt::format("{}: flushing to disk failed (disk full?)", partial_path()));
+}
+
+void skip_hdf5_exit_cleanup() {
+  H5dont_atexit();
+}
+
+std::optional<std::string> FrameWriter::out_of_room() const {
+  const std::uintmax_t frame_bytes = std::uintmax_t(lattice_.node_count()) * 12 +
+                                     impl_->coarse_buffer.size() * 4 + impl_->stage_count * 8 + 64;
+  const std::uintmax_t pending = std::uintmax_t(frames_ % flush_every_) + 1;
+  const std::uintmax_t need = 2 * pending * frame_bytes + (std::uintmax_t(1) << 20);
+  std::uintmax_t room = UINTMAX_MAX;
+  const std::string partial = partial_path();
+  struct statvfs disk {};
+  const fs::path dir = fs::path(partial).has_parent_path() ? fs::path(partial).parent_path() : ".";
+  if (statvfs(dir.c_str(), &disk) == 0) room = std::uintmax_t(disk.f_bavail) * disk.f_frsize;
+  struct rlimit limit {};
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(partial, ec);
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && !ec)
+    room = std::min(room, std::uintmax_t(limit.rlim_cur) > size ? limit.rlim_cur - size : 0);
+  if (room >= need) return std::nullopt;
+  return fmt::format(
+      "no room for more frames: {:.1f} MB left on the disk or under the file size "
+      "limit, the next ones need {:.1f} MB",
+      double(room) / 1e6, double(need) / 1e6);
 }
 
 void FrameWriter::finish(const std::string& status, const std::string& reason) {

@@ -93,9 +93,14 @@ TEST(SceneParser, CoarseMustDivideFineAndSaysWhatWould) {
   EXPECT_NE(message.find("coarse rows that work: 2, 3, 5, 9"), std::string::npos) << message;
 }
 
-TEST(SceneParser, UnbuiltFeaturesAreRejectedNotIgnored) {
-  EXPECT_NE(error_of(std::string(kMinimal) + "[render]\nstyle = \"shaded\"\n")
-                .find("render: rendering is not available"),
+TEST(SceneParser, RenderTableIsReadAndChecked) {
+  const Scene scene = parse_scene(
+      std::string(kMinimal) + "[render]\nstyle = \"wireframe\"\nsize = [640, 360]\n", "s.toml");
+  ASSERT_TRUE(scene.render.has_value());
+  EXPECT_EQ(scene.render->style, "wireframe");
+  EXPECT_EQ(scene.render->size_px, (std::array<int, 2>{640, 360}));
+  EXPECT_NE(error_of(std::string(kMinimal) + "[render]\nstyle = \"sketch\"\n")
+                .find("render.style: expected one of \"wireframe\", \"shaded\", \"textured\""),
             std::string::npos);
 }
 

@@ -8,6 +8,7 @@
 // XDMF sidecar OUT.xdmf for ParaView.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -16,6 +17,12 @@
 #include "flagsim/core/lattice.hpp"
 
 namespace flagsim::data {
+
+/// To be called first thing in main, before any HDF5 call: no HDF5 clean-up
+/// at process exit. HDF5 1.10's exit handler crashes (SIGSEGV in H5F__close_cb)
+/// on a file whose flush failed (disk full); every file is closed by its owner
+/// before exit anyway.
+void skip_hdf5_exit_cleanup();
 
 inline constexpr const char* kFormat = "flag-sim/1";
 
@@ -64,6 +71,13 @@ class FrameWriter {
   /// root attribute `status_reason` when non-empty, flushes, closes, renames
   /// the file to its final name and writes the XDMF sidecar. Throws IoError.
   void finish(const std::string& status, const std::string& reason = "");
+
+  /// Says why the next frame should not be written, or nullopt when it may be:
+  /// the disk holding the file, or the process's file size limit, has less room
+  /// than the frames not yet flushed plus one more, twice, plus 1 MiB for HDF5's
+  /// metadata. HDF5 cannot undo a flush that ran out of space half-way (the
+  /// file is then unreadable), so the run stops while the file is still whole.
+  std::optional<std::string> out_of_room() const;
 
   int frames_written() const { return frames_; }
   const std::string& path() const { return path_; }
