@@ -30,6 +30,35 @@ int run_command(const RunOptions& options);
 int validate_command(const std::string& scene_path);
 int info_command(const std::string& path);
 int scene_command(bool print_default);
+struct CompareOptions {
+  std::string scene_path;
+  std::string reference = "mass-spring";
+  std::string output;  ///< -o REPORT.csv; empty: the table only
+  std::vector<std::string> sets;
+  std::optional<long long> frames;
+  double horizon_s = 0.5;
+};
+int compare_command(const CompareOptions& options);
+
+/// Checks that a report can be written at `path` (its directory exists and is
+/// writable); empty is fine. Throws UserError.
+void check_report_path(const std::string& path);
+
+struct SweepOptions {
+  std::string scene_path;
+  std::string coarse, substeps, relax;  ///< comma-separated lists
+  std::string output, plot;
+  std::vector<std::string> sets;
+  std::optional<long long> frames;
+  std::optional<int> point;
+  int jobs = 1;
+  double horizon_s = 0.5;
+  std::vector<std::string> merge;  ///< CSVs to join instead of running
+  bool quiet = false;
+};
+/// argv: the command line that started this sweep (children re-run it with --point).
+int sweep_command(const SweepOptions& options, const std::vector<std::string>& argv);
+
 struct RenderRequest;
 int render_command(const std::string& h5_path, const RenderRequest& request);
 

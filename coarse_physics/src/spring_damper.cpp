@@ -96,9 +96,20 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
         state.x_m[i] += dt_s * state.v_m_s[i];
       }
     }
+    for (std::size_t i = 0; i < driven_.size(); ++i) {
+      const std::size_t node = driven_[i];
+      const Vec3 before = state.x_m[node] - dt_s * state.v_m_s[node];
+      state.x_m[node] = where_(i, next_time);
+      state.v_m_s[node] = (state.x_m[node] - before) / dt_s;
+    }
     state.time_s = next_time;
   };
   run_timed(times, update_stage_, update);
+}
+
+void SpringDamperSolver::drive(std::vector<std::size_t> nodes, Driver where) {
+  driven_ = std::move(nodes);
+  where_ = std::move(where);
 }
 
 double SpringDamperSolver::kinetic_energy(const ClothState& state) const {

@@ -176,3 +176,22 @@ TEST(SpringDamper, PinsFollowThePole) {
 
 }  // namespace
 }  // namespace flagsim::physics
+
+namespace flagsim::physics {
+namespace {
+
+TEST(SpringDamper, DrivenNodesFollowTheirPath) {
+  Scene scene = test::small_cloth(3, 4);
+  scene.fps = 10.0;
+  SpringDamperSolver solver(scene);
+  ClothState state = solver.initial_state(0);
+  const Vec3 start = state.x_m[5];
+  solver.drive({5}, [&](std::size_t, double t) { return Vec3(start + Vec3(0.0, 0.0, 0.3 * t)); });
+  solver.advance_frame(state, nullptr);
+  EXPECT_NEAR((state.x_m[5] - (start + Vec3(0.0, 0.0, 0.03))).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(state.v_m_s[5].z(), 0.3, 1e-9);
+  EXPECT_GT(std::abs(state.x_m[6].z()), 0.0);  // and pulls its neighbours along
+}
+
+}  // namespace
+}  // namespace flagsim::physics

@@ -12,6 +12,7 @@
 // solver.substeps is only a minimum. Past the limit (which the solver never
 // picks itself), the run is caught by the divergence checks of the run loop.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,6 +66,13 @@ class SpringDamperSolver {
   /// One substep of dt seconds.
   void step(ClothState& state, double dt_s, StageTimes* times);
 
+  /// Prescribed motion for some nodes (the tracking run of `flag-sim compare`:
+  /// the coarse nodes follow the hybrid's trajectory): after every substep,
+  /// node nodes[i] is put at where(i, t) and given the velocity of that move.
+  /// The stability limit is kept as computed with them free (conservative).
+  using Driver = std::function<Vec3(std::size_t which, double time_s)>;
+  void drive(std::vector<std::size_t> nodes, Driver where);
+
   /// Kinetic energy, J.
   double kinetic_energy(const ClothState& state) const;
   /// Sum of the conservative terms' potential energies, J.
@@ -83,6 +91,8 @@ class SpringDamperSolver {
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<std::string> effects_;
   std::vector<Vec3> forces_n_;
+  std::vector<std::size_t> driven_;
+  Driver where_;
   std::vector<int> term_stage_;
   int update_stage_ = -1;
   double frame_s_ = 0.0;

@@ -1,0 +1,140 @@
+#include "flagsim/analysis/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace flagsim::analysis {
+namespace {
+
+// Index (fractional) of the strongest non-zero frequency bin of the Hann-windowed,
+// mean-removed signal; -1 when the signal does not vary.
+double peak_bin(std::span<const double> signal) {
+  const std::size_t n = signal.size();
+  if (n < 4) return -1.0;
+  double mean = 0.0;
+  for (double v : signal) mean += v;
+  mean /= double(n);
+  std::vector<double> x(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double hann = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * double(i) / double(n - 1));
+    x[i] = (signal[i] - mean) * hann;
+  }
+  std::vector<double> power(n / 2 + 1, 0.0);
+  for (std::size_t f = 1; f < power.size(); ++f) {
+    double re = 0.0, im = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double phase = 2.0 * std::numbers::pi * double(f * i % n) / double(n);
+      re += x[i] * std::cos(phase);
+      im -= x[i] * std::sin(phase);
+    }
+    power[f] = re * re + im * im;
+  }
+  const auto best = std::max_element(power.begin() + 1, power.end());
+  if (*best <= 1e-30) return -1.0;
+  const std::size_t k = std::size_t(best - power.begin());
+  if (k == 0 || k + 1 >= power.size()) return double(k);
+  // Parabola through the log power of the peak and its neighbours.
+  const double a = std::log(power[k - 1] + 1e-300), b = std::log(power[k]),
+               c = std::log(power[k + 1] + 1e-300);
+  const double denom = a - 2.0 * b + c;
+  const double shift = denom != 0.0 ? 0.5 * (a - c) / denom : 0.0;
+  return double(k) + std::clamp(shift, -0.5, 0.5);
+}
+
+}  // namespace
+
+double rms_distance(std::span<const Vec3> a, std::span<const Vec3> b,
+                    std::span<const std::uint8_t> keep) {
+  if (a.size() != b.size()) throw std::invalid_argument("rms_distance: different node counts");
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!keep.empty() && !keep[i]) continue;
+    sum += (a[i] - b[i]).squaredNorm();
+    ++count;
+  }
+  return count ? std::sqrt(sum / double(count)) : 0.0;
+}
+
+double short_horizon_rms(const Frames& a, const Frames& b, int frames) {
+  const int last = std::min({frames, int(a.size()) - 1, int(b.size()) - 1});
+  double sum = 0.0;
+  for (int t = 1; t <= last; ++t) {
+    const double r = rms_distance(a[std::size_t(t)], b[std::size_t(t)]);
+    sum += r * r;
+  }
+  return last >= 1 ? std::sqrt(sum / last) : 0.0;
+}
+
+double mean_shape_rms(const Frames& a, const Frames& b, int first_frame) {
+  const int end = int(std::min(a.size(), b.size()));
+  if (first_frame >= end) return 0.0;
+  const std::size_t n = a[0].size();
+  std::vector<Vec3> mean_a(n, Vec3::Zero()), mean_b(n, Vec3::Zero());
+  for (int t = first_frame; t < end; ++t)
+    for (std::size_t i = 0; i < n; ++i) {
+      mean_a[i] += a[std::size_t(t)][i];
+      mean_b[i] += b[std::size_t(t)][i];
+    }
+  return rms_distance(mean_a, mean_b) / double(end - first_frame);
+}
+
+double flap_frequency_hz(std::span<const double> signal, double fps) {
+  const double bin = peak_bin(signal);
+  return bin < 0.0 ? 0.0 : bin * fps / double(signal.size());
+}
+
+StrainDistribution strain_distribution(const Lattice& lattice, const Frames& frames) {
+  std::vector<float> strains;
+  for (const auto& x : frames)
+    for (int j = 0; j < lattice.rows; ++j)
+      for (int k = 0; k < lattice.cols; ++k) {
+        const Vec3& p = x[lattice.index(j, k)];
+        if (k + 1 < lattice.cols)
+          strains.push_back(
+              float(std::abs((x[lattice.index(j, k + 1)] - p).norm() - lattice.spacing_x_m) /
+                    lattice.spacing_x_m));
+        if (j + 1 < lattice.rows)
+          strains.push_back(
+              float(std::abs((x[lattice.index(j + 1, k)] - p).norm() - lattice.spacing_y_m) /
+                    lattice.spacing_y_m));
+      }
+  if (strains.empty()) return {};
+  const std::size_t at = std::size_t(0.99 * double(strains.size() - 1));
+  std::nth_element(strains.begin(), strains.begin() + long(at), strains.end());
+  const double p99 = strains[at];
+  return {double(*std::max_element(strains.begin(), strains.end())), p99};
+}
+
+double wrinkle_wavelength_m(const Lattice& lattice, const Frames& frames, int first_frame) {
+  std::vector<double> wavelengths;
+  const int cols = lattice.cols;
+  if (cols < 8) return 0.0;
+  std::vector<double> offsets(std::size_t(cols - 2));
+  for (std::size_t t = std::size_t(std::max(first_frame, 0)); t < frames.size(); ++t) {
+    const auto& x = frames[t];
+    for (int j = 1; j + 1 < lattice.rows; ++j) {
+      for (int k = 1; k + 1 < cols; ++k) {
+        // The local normal from the neighbours across and along the row.
+        const Vec3 along = x[lattice.index(j, k + 1)] - x[lattice.index(j, k - 1)];
+        const Vec3 across = x[lattice.index(j + 1, k)] - x[lattice.index(j - 1, k)];
+        Vec3 normal = along.cross(across);
+        const double norm = normal.norm();
+        if (norm > 0.0) normal /= norm;
+        const Vec3 off = x[lattice.index(j, k)] -
+                         0.5 * (x[lattice.index(j, k - 1)] + x[lattice.index(j, k + 1)]);
+        offsets[std::size_t(k - 1)] = off.dot(normal);
+      }
+      const double bin = peak_bin(offsets);
+      if (bin > 0.0) wavelengths.push_back(double(offsets.size()) * lattice.spacing_x_m / bin);
+    }
+  }
+  if (wavelengths.empty()) return 0.0;
+  std::nth_element(wavelengths.begin(), wavelengths.begin() + long(wavelengths.size() / 2),
+                   wavelengths.end());
+  return wavelengths[wavelengths.size() / 2];
+}
+
+}  // namespace flagsim::analysis

@@ -1,0 +1,124 @@
+#include "report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "flagsim/core/errors.hpp"
+
+namespace flagsim::app {
+namespace {
+
+std::string lattice_text(int rows, int cols) {
+  return fmt::format("{}x{}", rows, cols);
+}
+
+std::string optional_text(const std::optional<double>& value) {
+  return value ? fmt::format("{:.6g}", *value) : std::string();
+}
+
+// The fly end's middle node's out-of-plane position over the second half.
+std::vector<double> fly_end_signal(const RunRecord& run) {
+  const Lattice& l = run.lattice;
+  const std::size_t node = l.index(l.rows / 2, l.cols - 1);
+  std::vector<double> z;
+  for (std::size_t t = run.frames.size() / 2; t < run.frames.size(); ++t)
+    z.push_back(run.frames[t][node].z());
+  return z;
+}
+
+}  // namespace
+
+ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& reference,
+                   const RunRecord* tracking, const MetricWindow& window) {
+  ReportRow row;
+  row.mode = to_string(scene.mode);
+  row.backend = scene.mode == Mode::kBullet       ? "bullet"
+                : scene.mode == Mode::kMassSpring ? "spring-damper"
+                                                  : scene.solver.backend;
+  row.fine = lattice_text(run.lattice.rows, run.lattice.cols);
+  row.coarse = run.coarse_rows.empty()
+                   ? std::string()
+                   : lattice_text(int(run.coarse_rows.size()), int(run.coarse_cols.size()));
+  row.substeps = run.substeps_per_frame;
+  row.relax_iterations = scene.infill ? scene.infill->relax_iterations : 0;
+  row.frames = int(run.frames.size());
+  row.ms_per_frame = run.ms_per_frame;
+  row.physics_ms = run.physics_ms;
+  row.infill_ms = run.infill_ms;
+  const analysis::StrainDistribution strain =
+      analysis::strain_distribution(run.lattice, run.frames);
+  row.max_strain = strain.max;
+  row.p99_strain = strain.p99;
+  row.status = run.status;
+  const int horizon = std::max(1, int(std::lround(window.horizon_s * scene.fps)));
+  const int half = int(std::min(run.frames.size(), reference.frames.size()) / 2);
+  row.short_horizon_rms_m = analysis::short_horizon_rms(run.frames, reference.frames, horizon);
+  row.mean_shape_rms_m = analysis::mean_shape_rms(run.frames, reference.frames, half);
+  row.flap_hz = analysis::flap_frequency_hz(fly_end_signal(run), scene.fps);
+  const double reference_hz = analysis::flap_frequency_hz(fly_end_signal(reference), scene.fps);
+  if (reference_hz > 0.0) row.flap_rel_error = std::abs(*row.flap_hz - reference_hz) / reference_hz;
+  row.wrinkle_wavelength_m = analysis::wrinkle_wavelength_m(run.lattice, run.frames, half);
+  if (tracking && !run.coarse_rows.empty()) {
+    // Every node but the driven (coarse) ones, over every frame both have.
+    std::vector<std::uint8_t> keep(run.lattice.node_count(), 1);
+    for (int j : run.coarse_rows)
+      for (int k : run.coarse_cols) keep[run.lattice.index(j, k)] = 0;
+    const std::size_t frames = std::min(run.frames.size(), tracking->frames.size());
+    double sum = 0.0;
+    for (std::size_t t = 1; t < frames; ++t) {
+      const double r = analysis::rms_distance(run.frames[t], tracking->frames[t], keep);
+      sum += r * r;
+    }
+    row.tracking_rms_m = frames > 1 ? std::sqrt(sum / double(frames - 1)) : 0.0;
+  }
+  return row;
+}
+
+std::string csv_header() {
+  return "point,label,mode,backend,fine,coarse,substeps,relax_iterations,frames,ms_per_frame,"
+         "physics_ms,infill_ms,max_strain,p99_strain,short_horizon_rms_m,tracking_rms_m,flap_hz,"
+         "flap_rel_error,mean_shape_rms_m,wrinkle_wavelength_m,status";
+}
+
+std::string csv_line(const ReportRow& r) {
+  return fmt::format(
+      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{}", r.point,
+      r.label, r.mode, r.backend, r.fine, r.coarse, r.substeps, r.relax_iterations, r.frames,
+      r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
+      optional_text(r.short_horizon_rms_m), optional_text(r.tracking_rms_m),
+      optional_text(r.flap_hz), optional_text(r.flap_rel_error), optional_text(r.mean_shape_rms_m),
+      optional_text(r.wrinkle_wavelength_m), r.status);
+}
+
+std::vector<std::string> csv_rows(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw UserError(fmt::format("{}: cannot open", path));
+  std::string line;
+  if (!std::getline(in, line) || line != csv_header())
+    throw UserError(fmt::format("{}: not a flag-sim sweep or compare CSV (header differs)", path));
+  std::vector<std::string> rows;
+  while (std::getline(in, line))
+    if (!line.empty()) rows.push_back(line);
+  return rows;
+}
+
+std::string text_table(const std::vector<ReportRow>& rows) {
+  auto mm = [](const std::optional<double>& v) {
+    return v ? fmt::format("{:.1f}", 1e3 * *v) : std::string("-");
+  };
+  std::string out = fmt::format(
+      "{:<34} {:>9} {:>8} {:>8} {:>7} {:>6} {:>9} {:>9} {:>6} {:>9} {:>8}\n", "run", "ms/frame",
+      "physics", "infill", "max%", "p99%", "short mm", "track mm", "flapHz", "shape mm", "wrinkle");
+  for (const ReportRow& r : rows)
+    out += fmt::format(
+        "{:<34} {:>9.1f} {:>8.1f} {:>8.1f} {:>7.2f} {:>6.2f} {:>9} {:>9} {:>6} {:>9} {:>8}\n",
+        r.label, r.ms_per_frame, r.physics_ms, r.infill_ms, 100 * r.max_strain, 100 * r.p99_strain,
+        mm(r.short_horizon_rms_m), mm(r.tracking_rms_m),
+        r.flap_hz ? fmt::format("{:.2f}", *r.flap_hz) : "-", mm(r.mean_shape_rms_m),
+        r.wrinkle_wavelength_m ? fmt::format("{:.3f}", *r.wrinkle_wavelength_m) : "-");
+  return out;
+}
+
+}  // namespace flagsim::app

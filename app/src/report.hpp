@@ -1,0 +1,44 @@
+#pragma once
+// The rows `compare` and `sweep` write: one run each, its cost and its error
+// against the reference run (contract: "Compare and sweep reports").
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flagsim/core/scene.hpp"
+#include "run_record.hpp"
+
+namespace flagsim::app {
+
+struct ReportRow {
+  int point = 0;
+  std::string label;  ///< "hybrid", "reference", "tracking", "coarse=9x13 substeps=1 relax=8000"
+  std::string mode, backend, fine, coarse;
+  int substeps = 0, relax_iterations = 0, frames = 0;
+  double ms_per_frame = 0, physics_ms = 0, infill_ms = 0, max_strain = 0, p99_strain = 0;
+  // Against the reference; empty where it does not apply.
+  std::optional<double> short_horizon_rms_m, tracking_rms_m, flap_hz, flap_rel_error,
+      mean_shape_rms_m, wrinkle_wavelength_m;
+  std::string status;
+};
+
+/// Where the metrics look: the short horizon (first `horizon_s`), and the
+/// second half of the run for the statistics (flap, mean shape, wrinkles).
+struct MetricWindow {
+  double horizon_s = 0.5;
+};
+
+/// The row of `run` (of `scene`), errors against `reference` (may be the run
+/// itself), the infill's own error against `tracking` when given.
+ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& reference,
+                   const RunRecord* tracking, const MetricWindow& window);
+
+std::string csv_header();
+std::string csv_line(const ReportRow& row);
+/// Rows of a CSV this module wrote (for merging sweep points). Throws UserError naming the file.
+std::vector<std::string> csv_rows(const std::string& path);
+
+/// The short human-readable table printed to stdout.
+std::string text_table(const std::vector<ReportRow>& rows);
+
+}  // namespace flagsim::app

@@ -1,0 +1,271 @@
+// `flag-sim sweep`: a grid of hybrid settings (coarse lattice x substeps x
+// relaxation passes) and the two full-lattice references, each point a run
+// measured against the mass-spring reference (report.hpp). Points are
+// independent: --point I runs one, --jobs N runs N at a time as child
+// processes, --merge joins the CSVs of points run anywhere.
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+
+#include "commands.hpp"
+#include "flagsim/core/errors.hpp"
+#include "report.hpp"
+#include "run_record.hpp"
+
+extern char** environ;
+
+namespace flagsim::app {
+std::string_view sweep_plot_script();
+
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kPython = "/usr/bin/python3";
+
+struct SweepPoint {
+  std::string label;
+  std::vector<std::string> sets;  ///< what makes this point: mode, coarse, substeps, relax
+};
+
+template <typename T>
+std::vector<T> parse_list(const std::string& flag, const std::string& text,
+                          T (*parse)(const std::string&, const std::string&)) {
+  std::vector<T> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    values.push_back(parse(flag, text.substr(start, comma - start)));
+    start = comma + 1;
+  }
+  return values;
+}
+
+std::pair<int, int> parse_lattice(const std::string& flag, const std::string& item) {
+  static const std::regex pattern(R"(^\s*(\d{1,5})\s*[xX]\s*(\d{1,5})\s*$)");
+  std::smatch m;
+  if (!std::regex_match(item, m, pattern))
+    throw UserError(
+        fmt::format("{} {}: expected coarse lattices as JcxKc, e.g. 5x7,9x13", flag, item));
+  return {std::stoi(m[1]), std::stoi(m[2])};
+}
+
+int parse_count(const std::string& flag, const std::string& item) {
+  static const std::regex pattern(R"(^\s*(\d{1,7})\s*$)");
+  std::smatch m;
+  if (!std::regex_match(item, m, pattern) || std::stoi(m[1]) < 1)
+    throw UserError(
+        fmt::format("{} {}: expected counts of at least 1, comma-separated", flag, item));
+  return std::stoi(m[1]);
+}
+
+// Point 0: the mass-spring reference; 1: Bullet on the full lattice; then the
+// hybrid grid, coarse lattice slowest, relaxation fastest.
+std::vector<SweepPoint> grid_of(const SweepOptions& o) {
+  std::vector<SweepPoint> points = {{"mass-spring reference", {"scene.mode=\"mass-spring\""}},
+                                    {"bullet reference", {"scene.mode=\"bullet\""}}};
+  if (o.coarse.empty()) throw UserError("sweep: --coarse is required (e.g. --coarse 5x7,9x13)");
+  const auto coarse = parse_list<std::pair<int, int>>("--coarse", o.coarse, parse_lattice);
+  const auto substeps = o.substeps.empty() ? std::vector<int>{0}
+                                           : parse_list<int>("--substeps", o.substeps, parse_count);
+  const auto relax =
+      o.relax.empty() ? std::vector<int>{0} : parse_list<int>("--relax", o.relax, parse_count);
+  for (const auto& [jc, kc] : coarse)
+    for (int s : substeps)
+      for (int r : relax) {
+        SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
+                     {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
+        if (s > 0) {
+          p.sets.push_back(fmt::format("solver.substeps={}", s));
+          p.label += fmt::format(" substeps {}", s);
+        }
+        if (r > 0) {
+          p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
+          p.label += fmt::format(" relax {}", r);
+        }
+        points.push_back(p);
+      }
+  return points;
+}
+
+std::vector<std::string> base_sets(const SweepOptions& o) {
+  std::vector<std::string> sets = o.sets;
+  if (o.frames) {
+    if (*o.frames < 2)
+      throw UserError(fmt::format("--frames {}: a sweep needs at least 2 frames", *o.frames));
+    sets.push_back(fmt::format("scene.frames={}", *o.frames));
+  }
+  return sets;
+}
+
+Scene scene_of(const SweepOptions& o, const SweepPoint& point) {
+  std::vector<std::string> sets = base_sets(o);
+  sets.insert(sets.end(), point.sets.begin(), point.sets.end());
+  return load_scene(o.scene_path, sets);
+}
+
+void check_plot_tools() {
+  const std::string probe = fmt::format("{} -c 'import matplotlib' >/dev/null 2>&1", kPython);
+  if (std::system(probe.c_str()) != 0)
+    throw UserError(fmt::format(
+        "--plot needs {} with matplotlib (apt-get install python3-matplotlib)", kPython));
+}
+
+void plot(const std::string& csv, const std::string& png) {
+  const std::string command = fmt::format("{} - '{}' '{}'", kPython, csv, png);
+  FILE* python = popen(command.c_str(), "w");
+  if (!python) throw IoError(fmt::format("{}: cannot start {}", png, kPython));
+  const std::string_view script = sweep_plot_script();
+  std::fwrite(script.data(), 1, script.size(), python);
+  const int status = pclose(python);
+  if (status != 0)
+    throw IoError(fmt::format("{}: the plot failed ({} exited with {})", png, kPython, status));
+}
+
+void write_rows(const std::string& path, const std::vector<std::string>& lines) {
+  std::ofstream out(path);
+  out << csv_header() << "\n";
+  for (const std::string& line : lines) out << line << "\n";
+  if (!out) throw IoError(fmt::format("{}: writing the sweep failed", path));
+}
+
+int point_of_line(const std::string& line) {
+  return std::stoi(line.substr(0, line.find(',')));
+}
+
+// Runs `points` (indices) in this process, against a reference run here.
+std::vector<std::string> run_points(const SweepOptions& o, const std::vector<SweepPoint>& grid,
+                                    const std::vector<int>& points) {
+  const MetricWindow window{o.horizon_s};
+  const Scene reference_scene = scene_of(o, grid[0]);
+  const RunRecord reference = record_run(reference_scene);
+  std::vector<std::string> lines;
+  for (int i : points) {
+    const Scene scene = scene_of(o, grid[std::size_t(i)]);
+    const RunRecord run = i == 0 ? reference : record_run(scene);
+    ReportRow row = describe(scene, run, reference, nullptr, window);
+    row.point = i;
+    row.label = grid[std::size_t(i)].label;
+    lines.push_back(csv_line(row));
+    if (!o.quiet)
+      fmt::print(stderr, "point {}: {} done, {:.1f} ms/frame\n", i, row.label, row.ms_per_frame);
+  }
+  return lines;
+}
+
+// The command line minus what only the parent does (-o, --plot, --jobs, --quiet).
+std::vector<std::string> child_arguments(const std::vector<std::string>& argv) {
+  std::vector<std::string> args;
+  for (std::size_t i = 0; i < argv.size(); ++i) {
+    const std::string& a = argv[i];
+    if (a == "-o" || a == "--output" || a == "--plot" || a == "--jobs") {
+      ++i;  // and its value
+      continue;
+    }
+    if (a.starts_with("--output=") || a.starts_with("--plot=") || a.starts_with("--jobs=") ||
+        a == "-q" || a == "--quiet")
+      continue;
+    args.push_back(a);
+  }
+  return args;
+}
+
+// Runs every point in child processes `flag-sim sweep ... --point I`, `jobs` at a time.
+std::vector<std::string> run_children(const std::vector<std::string>& argv, int count, int jobs,
+                                      const fs::path& dir) {
+  std::vector<std::string> lines;
+  std::map<pid_t, int> running;
+  int next = 0, failed = -1;
+  auto reap = [&] {
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid <= 0) return;
+    const int point = running[pid];
+    running.erase(pid);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) failed = point;
+  };
+  while ((next < count && failed < 0) || !running.empty()) {
+    if (next < count && int(running.size()) < jobs && failed < 0) {
+      std::vector<std::string> args = child_arguments(argv);
+      args.insert(args.end(), {"--point", std::to_string(next), "-o",
+                               (dir / fmt::format("point_{}.csv", next)).string(), "--quiet"});
+      std::vector<char*> c_args;
+      for (std::string& a : args) c_args.push_back(a.data());
+      c_args.push_back(nullptr);
+      pid_t pid = 0;
+      if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, c_args.data(), environ) != 0)
+        throw IoError("sweep: cannot start a worker process");
+      running[pid] = next++;
+    } else {
+      reap();
+    }
+  }
+  if (failed >= 0)
+    throw IoError(
+        fmt::format("sweep: point {} failed (run it alone with --point {})", failed, failed));
+  for (int i = 0; i < count; ++i) {
+    const auto rows = csv_rows((dir / fmt::format("point_{}.csv", i)).string());
+    lines.insert(lines.end(), rows.begin(), rows.end());
+  }
+  return lines;
+}
+
+}  // namespace
+
+int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
+  if (o.output.empty()) throw UserError("sweep: -o SWEEP.csv is required");
+  check_report_path(o.output);
+  if (!o.plot.empty()) {
+    check_report_path(o.plot);
+    check_plot_tools();
+  }
+  std::vector<std::string> lines;
+  if (!o.merge.empty()) {  // join the CSVs of points run separately
+    std::map<int, std::string> by_point;
+    for (const std::string& file : o.merge)
+      for (const std::string& line : csv_rows(file))
+        if (!by_point.emplace(point_of_line(line), line).second)
+          throw UserError(
+              fmt::format("--merge {}: point {} appears twice", file, point_of_line(line)));
+    for (const auto& [point, line] : by_point) lines.push_back(line);
+  } else {
+    if (!(o.horizon_s > 0.0))
+      throw UserError(fmt::format("--horizon {}: expected a duration > 0 s", o.horizon_s));
+    const std::vector<SweepPoint> grid = grid_of(o);
+    // Every point's scene is checked before anything runs (a coarse lattice
+    // that does not divide the fine one is exit 2 now, not an hour in).
+    for (const SweepPoint& point : grid) scene_of(o, point);
+    const int count = int(grid.size());
+    if (o.point && (*o.point < 0 || *o.point >= count))
+      throw UserError(
+          fmt::format("--point {}: this sweep has points 0 to {}", *o.point, count - 1));
+    if (o.jobs < 1) throw UserError(fmt::format("--jobs {}: expected at least 1", o.jobs));
+    if (o.point) {
+      lines = run_points(o, grid, {*o.point});
+    } else if (o.jobs > 1) {
+      const fs::path dir = fs::path(o.output).string() + ".points";
+      fs::create_directories(dir);
+      lines = run_children(argv, count, o.jobs, dir);
+      fs::remove_all(dir);
+    } else {
+      std::vector<int> all(static_cast<std::size_t>(count));
+      for (int i = 0; i < count; ++i) all[std::size_t(i)] = i;
+      lines = run_points(o, grid, all);
+    }
+  }
+  write_rows(o.output, lines);
+  if (!o.plot.empty()) plot(o.output, o.plot);
+  if (!o.quiet)
+    fmt::print("sweep: {} points -> {}{}\n", lines.size(), o.output,
+               o.plot.empty() ? "" : fmt::format(", {}", o.plot));
+  return int(ExitCode::kSuccess);
+}
+
+}  // namespace flagsim::app

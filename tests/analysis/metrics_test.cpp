@@ -1,0 +1,84 @@
+// Each metric on a constructed case whose answer is known.
+#include "flagsim/analysis/metrics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace flagsim::analysis {
+namespace {
+
+const Lattice kLattice = Lattice::rectangle(9, 13, 1.5, 1.0, Vec3(0.0, 2.0, 0.0));
+
+// A run: the rest lattice bobbing in z as sin(2 pi f t), 30 fps.
+Frames bobbing(int frames, double hz, double amplitude = 0.05) {
+  Frames out;
+  for (int t = 0; t < frames; ++t) {
+    std::vector<Vec3> x = kLattice.rest_positions();
+    for (int j = 0; j < kLattice.rows; ++j)
+      for (int k = 0; k < kLattice.cols; ++k)
+        x[kLattice.index(j, k)].z() +=
+            amplitude * (k / 12.0) * std::sin(2.0 * std::numbers::pi * hz * t / 30.0);
+    out.push_back(x);
+  }
+  return out;
+}
+
+Frames shifted(Frames frames, const Vec3& by) {
+  for (auto& x : frames)
+    for (Vec3& p : x) p += by;
+  return frames;
+}
+
+TEST(Metrics, IdenticalRunsHaveNoError) {
+  const Frames a = bobbing(60, 1.3);
+  EXPECT_EQ(short_horizon_rms(a, a, 15), 0.0);
+  EXPECT_EQ(mean_shape_rms(a, a, 0), 0.0);
+  EXPECT_EQ(rms_distance(a[7], a[7]), 0.0);
+}
+
+TEST(Metrics, AKnownShiftGivesThatShift) {
+  const Frames a = bobbing(60, 1.3);
+  const Frames b = shifted(a, Vec3(0.003, -0.004, 0.0));  // 5 mm
+  EXPECT_NEAR(short_horizon_rms(a, b, 15), 0.005, 1e-12);
+  EXPECT_NEAR(mean_shape_rms(a, b, 30), 0.005, 1e-12);
+  // Only the nodes kept count.
+  std::vector<std::uint8_t> keep(a[0].size(), 0);
+  std::vector<Vec3> c = a[5];
+  c[3] += Vec3(0.0, 0.0, 0.02);
+  keep[3] = 1;
+  EXPECT_NEAR(rms_distance(a[5], c, keep), 0.02, 1e-12);
+}
+
+TEST(Metrics, ASineDrivenFlyEndGivesItsFrequency) {
+  for (double hz : {0.7, 1.3, 2.9, 6.1}) {
+    std::vector<double> z;
+    for (int t = 0; t < 300; ++t)
+      z.push_back(0.2 + 0.1 * std::sin(2.0 * std::numbers::pi * hz * t / 30.0 + 0.4));
+    EXPECT_NEAR(flap_frequency_hz(z, 30.0), hz, 0.02 * hz) << hz;
+  }
+  EXPECT_EQ(flap_frequency_hz(std::vector<double>(100, 1.0), 30.0), 0.0);  // no flapping
+}
+
+TEST(Metrics, StrainDistributionFindsTheStretchedLink) {
+  std::vector<Vec3> x = kLattice.rest_positions();
+  for (int k = 0; k < kLattice.cols; ++k) x[kLattice.index(8, k)].y() -= 0.1 * kLattice.spacing_y_m;
+  const StrainDistribution s = strain_distribution(kLattice, Frames{x});
+  EXPECT_NEAR(s.max, 0.1, 1e-6);  // (kept as float32) the last row's 13 column links, of 212
+  EXPECT_NEAR(s.p99, 0.1, 1e-6);  // 13/212 > 1%
+  const StrainDistribution rest = strain_distribution(kLattice, Frames{kLattice.rest_positions()});
+  EXPECT_NEAR(rest.max, 0.0, 1e-12);
+}
+
+TEST(Metrics, WrinkleWavelengthOfASineWrinkledSheet) {
+  const Lattice fine = Lattice::rectangle(17, 97, 1.5, 1.0, Vec3::Zero());
+  for (double wavelength : {0.25, 0.5}) {
+    std::vector<Vec3> x = fine.rest_positions();
+    for (Vec3& p : x) p.z() = 0.004 * std::sin(2.0 * std::numbers::pi * p.x() / wavelength);
+    EXPECT_NEAR(wrinkle_wavelength_m(fine, Frames{x}, 0), wavelength, 0.1 * wavelength);
+  }
+}
+
+}  // namespace
+}  // namespace flagsim::analysis

@@ -1,0 +1,114 @@
+// `flag-sim compare` and `flag-sim sweep` end to end, on a small lattice.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "process.hpp"
+#include "temp_dir.hpp"
+
+namespace flagsim::test {
+namespace {
+
+const std::vector<std::string> kSmall = {"--set", "flag.fine=[17,25]", "--frames", "21"};
+
+std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream fields(line);
+    std::string cell;
+    while (std::getline(fields, cell, ',')) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+std::size_t column(const std::vector<std::vector<std::string>>& csv, const std::string& name) {
+  for (std::size_t i = 0; i < csv[0].size(); ++i)
+    if (csv[0][i] == name) return i;
+  ADD_FAILURE() << "no column " << name;
+  return 0;
+}
+
+// Every column but the wall-clock ones.
+std::vector<std::vector<std::string>> without_timing(std::vector<std::vector<std::string>> csv) {
+  const std::size_t ms = column(csv, "ms_per_frame"), physics = column(csv, "physics_ms"),
+                    infill = column(csv, "infill_ms");
+  for (auto& row : csv)
+    for (std::size_t c : {ms, physics, infill}) row[c] = "";
+  return csv;
+}
+
+TEST(Compare, WritesTheContractColumnsForEachRun) {
+  TempDir dir;
+  std::vector<std::string> args = {"compare", "-o", "report.csv"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  const ProcessResult result = run_flag_sim(args, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("hybrid"), std::string::npos) << result.out;
+  const auto csv = read_csv(dir.file("report.csv"));
+  ASSERT_EQ(csv.size(), 4u);  // header, reference, hybrid, tracking
+  for (const char* name : {"mode", "fine", "coarse", "substeps", "relax_iterations", "frames",
+                           "ms_per_frame", "physics_ms", "infill_ms", "max_strain", "p99_strain",
+                           "short_horizon_rms_m", "tracking_rms_m", "flap_hz", "mean_shape_rms_m"})
+    column(csv, name);
+  const std::size_t shape = column(csv, "mean_shape_rms_m"), track = column(csv, "tracking_rms_m");
+  EXPECT_EQ(csv[1][column(csv, "mode")], "mass-spring");
+  EXPECT_EQ(std::stod(csv[1][shape]), 0.0);  // the reference against itself
+  EXPECT_EQ(csv[2][column(csv, "mode")], "hybrid");
+  EXPECT_GT(std::stod(csv[2][shape]), 0.0);
+  EXPECT_GT(std::stod(csv[2][track]), 0.0);
+  EXPECT_EQ(csv[2][column(csv, "fine")], "17x25");
+  EXPECT_EQ(csv[2][column(csv, "coarse")], "9x13");
+}
+
+TEST(Sweep, PointsRunAloneAndMergedEqualTheWholeSweep) {
+  TempDir dir;
+  std::vector<std::string> base = {"sweep", "--coarse", "5x7,9x13", "--relax", "100", "--quiet"};
+  base.insert(base.end(), kSmall.begin(), kSmall.end());
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  ASSERT_EQ(run_flag_sim(with({"-o", "whole.csv"}), dir.path()).exit_code, 0);
+  ASSERT_EQ(run_flag_sim(with({"-o", "jobs.csv", "--jobs", "2"}), dir.path()).exit_code, 0);
+  std::vector<std::string> merge = {"sweep", "--quiet", "-o", "merged.csv", "--merge"};
+  for (int point = 3; point >= 0; --point) {  // any order
+    const std::string file = "p" + std::to_string(point) + ".csv";
+    ASSERT_EQ(
+        run_flag_sim(with({"-o", file, "--point", std::to_string(point)}), dir.path()).exit_code,
+        0);
+    merge.push_back(file);
+  }
+  ASSERT_EQ(run_flag_sim(merge, dir.path()).exit_code, 0);
+  const auto whole = without_timing(read_csv(dir.file("whole.csv")));
+  ASSERT_EQ(whole.size(), 5u);  // header, 2 references, 2 hybrid points
+  EXPECT_EQ(without_timing(read_csv(dir.file("merged.csv"))), whole);
+  EXPECT_EQ(without_timing(read_csv(dir.file("jobs.csv"))), whole);
+  // Merging a point twice is refused.
+  const ProcessResult twice =
+      run_flag_sim({"sweep", "-o", "x.csv", "--merge", "p0.csv", "p0.csv"}, dir.path());
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("point 0 appears twice"), std::string::npos) << twice.err;
+}
+
+TEST(Sweep, PlotsErrorAgainstCost) {
+  TempDir dir;
+  std::vector<std::string> args = {"sweep", "--coarse", "5x7",   "-o",
+                                   "s.csv", "--plot",   "s.png", "--quiet"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  const ProcessResult result = run_flag_sim(args, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::ifstream png(dir.file("s.png"), std::ios::binary);
+  char magic[4] = {};
+  png.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+}  // namespace
+}  // namespace flagsim::test
