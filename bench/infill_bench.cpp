@@ -1,6 +1,7 @@
 // Cost of the infill (steps 3.1-3.4) from a 9 x 13 coarse lattice, on fine
 // lattices 33x49 to 513x769, for a frame of a cloth being rolled onto a
-// cylinder (a length-keeping motion, so the 1% strain bound can hold).
+// cylinder (a length-keeping motion, so the 1% strain bound can hold). The
+// counters ms_infill_3.1 ... ms_infill_3.5 split a frame by step.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -42,9 +43,11 @@ void infill_frame(benchmark::State& bench, std::optional<flagsim::infill::Wrinkl
   }
   int frame = 0;
   int sweeps = 0;
+  flagsim::StageTimes times;  // each step's share, reported as counters
+  solver.register_stages(times);
   for (auto _ : bench) {
     coarse_at(frame++ % 2 == 0 ? 1.05 : 1.0);
-    solver.fill(coarse, dense, nullptr);
+    solver.fill(coarse, dense, &times);
     sweeps += solver.last_relax_sweeps();
     benchmark::DoNotOptimize(dense.data());
   }
@@ -53,6 +56,9 @@ void infill_frame(benchmark::State& bench, std::optional<flagsim::infill::Wrinkl
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   bench.counters["relax_sweeps"] = double(sweeps) / double(bench.iterations());
   bench.counters["max_strain_pct"] = 100.0 * flagsim::link_strain(lattice, dense).max;
+  for (std::size_t s = 0; s < times.names().size(); ++s)  // "ms_infill_3.4": per frame
+    bench.counters["ms_" + times.names()[s]] =
+        1e3 * times.seconds()[s] / double(bench.iterations());
 }
 
 void BM_InfillFrame(benchmark::State& bench) {
