@@ -20,23 +20,19 @@ for lattice in "${lattices[@]}"; do
   file="$out/run_${lattice/,/x}.h5"
   "$root/build/flag-sim" run --mode mass-spring --set "flag.fine=[$lattice]" \
     --set "scene.duration=$seconds" -o "$file" --quiet >/dev/null
-  /usr/bin/python3 - "$file" "$lattice" <<'PY'
+  /usr/bin/python3 - "$file" "$lattice" "$root/bench" <<'PY'
 import sys
 import h5py
-import numpy as np
+
+sys.path.insert(0, sys.argv[3])
+from strain_summary import p99_strain
 
 path, lattice = sys.argv[1], sys.argv[2].replace(",", "x")
 with h5py.File(path, "r") as f:
-    p = f["frames/positions"][...].astype(np.float64)
-    rest = f["lattice/rest_positions"][...].astype(np.float64)
     wall = f["stats/wall_seconds"][1:]
     substeps = f.attrs["substeps_per_frame"]
     max_strain = float(f["stats/max_strain"][...].max())
-sx = np.linalg.norm(rest[0, 1] - rest[0, 0])
-sy = np.linalg.norm(rest[1, 0] - rest[0, 0])
-row = np.abs(np.linalg.norm(np.diff(p, axis=2), axis=-1) - sx) / sx
-col = np.abs(np.linalg.norm(np.diff(p, axis=1), axis=-1) - sy) / sy
-p99 = np.percentile(np.concatenate([row.ravel(), col.ravel()]), 99)
+p99 = p99_strain(path)
 print(f"{lattice:<9} {substeps:9.0f} {1e3 * wall.mean():12.1f} {100 * max_strain:10.2f}% {100 * p99:10.2f}%")
 PY
 done

@@ -19,24 +19,20 @@ run() {  # name frames flag-sim-args...
   local name="$1" n="$2"
   shift 2
   "$root/build/flag-sim" run --frames "$n" -o "$out/$name.h5" --quiet "$@" >/dev/null
-  /usr/bin/python3 - "$out/$name.h5" "$name" <<'PY'
+  /usr/bin/python3 - "$out/$name.h5" "$name" "$root/bench" <<'PY'
 import sys
 import h5py
-import numpy as np
+
+sys.path.insert(0, sys.argv[3])
+from strain_summary import p99_strain
 
 path, name = sys.argv[1], sys.argv[2]
 with h5py.File(path, "r") as f:
-    p = f["frames/positions"][...].astype(np.float64)
-    rest = f["lattice/rest_positions"][...].astype(np.float64)
     stages = list(f["stats/stage_seconds"].attrs["stages"])
     seconds = f["stats/stage_seconds"][1:].mean(axis=0)
     substeps = f.attrs["substeps_per_frame"]
     max_strain = float(f["stats/max_strain"][...].max())
-sx = np.linalg.norm(rest[0, 1] - rest[0, 0])
-sy = np.linalg.norm(rest[1, 0] - rest[0, 0])
-row = np.abs(np.linalg.norm(np.diff(p, axis=2), axis=-1) - sx) / sx
-col = np.abs(np.linalg.norm(np.diff(p, axis=1), axis=-1) - sy) / sy
-p99 = np.percentile(np.concatenate([row.ravel(), col.ravel()]), 99)
+p99 = p99_strain(path)
 total = seconds.sum()
 split = " ".join(f"{s}={1e3 * t:.2f}" for s, t in zip(stages, seconds) if t > 0.0005)
 print(f"{name:<16} {substeps:6.0f} {1e3 * total:10.1f} {100 * max_strain:8.2f}% {100 * p99:7.2f}%  {split}")

@@ -18,6 +18,15 @@ int fail(ExitCode code, const std::string& message) {
   return int(code);
 }
 
+// The options compare and sweep share: the scene, its frames and overrides, the horizon.
+void add_measure_options(CLI::App* cmd, std::string& scene, std::optional<long long>& frames,
+                         double& horizon_s, std::vector<std::string>& sets) {
+  cmd->add_option("scene", scene, "Scene file (TOML; default: the embedded one)");
+  cmd->add_option("--frames", frames, "Frames per run, including t = 0");
+  cmd->add_option("--horizon", horizon_s, "Short horizon, s (default 0.5)");
+  cmd->add_option("--set", sets, "Override a scene key: KEY=VALUE (TOML value)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,18 +76,15 @@ int main(int argc, char** argv) {
   flagsim::app::CompareOptions compare;
   CLI::App* compare_cmd = cli.add_subcommand(
       "compare", "Hybrid against a full-lattice reference: accuracy and cost (CSV + table)");
-  compare_cmd->add_option("scene", compare.scene_path,
-                          "Scene file (TOML; default: the embedded one)");
+  add_measure_options(compare_cmd, compare.scene_path, compare.frames, compare.horizon_s,
+                      compare.sets);
   compare_cmd->add_option("--reference", compare.reference, "mass-spring (default) or bullet");
   compare_cmd->add_option("-o,--output", compare.output, "Report CSV");
-  compare_cmd->add_option("--frames", compare.frames, "Frames per run, including t = 0");
-  compare_cmd->add_option("--horizon", compare.horizon_s, "Short horizon, s (default 0.5)");
-  compare_cmd->add_option("--set", compare.sets, "Override a scene key: KEY=VALUE (TOML value)");
 
   flagsim::app::SweepOptions sweep;
   CLI::App* sweep_cmd = cli.add_subcommand(
       "sweep", "A grid of hybrid settings against full-lattice references (CSV, optional plot)");
-  sweep_cmd->add_option("scene", sweep.scene_path, "Scene file (TOML; default: the embedded one)");
+  add_measure_options(sweep_cmd, sweep.scene_path, sweep.frames, sweep.horizon_s, sweep.sets);
   sweep_cmd->add_option("--coarse", sweep.coarse, "Coarse lattices, e.g. 5x7,9x13,17x25");
   sweep_cmd->add_option("--substeps", sweep.substeps, "Minimum substeps per frame, e.g. 1,8");
   sweep_cmd->add_option("--relax", sweep.relax, "Relaxation passes (3.4) cap, e.g. 100,8000");
@@ -86,9 +92,6 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--plot", sweep.plot, "Error against ms per frame, PNG");
   sweep_cmd->add_option("--jobs", sweep.jobs, "Points run at a time (child processes)");
   sweep_cmd->add_option("--point", sweep.point, "Run only point I (0, 1: references)");
-  sweep_cmd->add_option("--frames", sweep.frames, "Frames per run, including t = 0");
-  sweep_cmd->add_option("--horizon", sweep.horizon_s, "Short horizon, s (default 0.5)");
-  sweep_cmd->add_option("--set", sweep.sets, "Override a scene key: KEY=VALUE (TOML value)");
   sweep_cmd->add_option("--merge", sweep.merge, "Join these point CSVs instead of running");
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
   std::vector<std::string> arguments(argv, argv + argc);
