@@ -213,19 +213,32 @@ void FrameRenderer::draw_cloth(const FrameView& frame) {
     glDisableClientState(GL_VERTEX_ARRAY);
     return;
   }
-  // Smooth normals: central differences across the lattice (one-sided at the border).
-  normals_.resize(x.size());
+  // Smooth normals: central differences across the lattice (one-sided at the
+  // border). Positions and normals go to GL as float: the rasterizer's own
+  // type, so it converts nothing per vertex.
+  vertices_.resize(3 * x.size());
+  normals_.resize(3 * x.size());
   for (int j = 0; j < rows; ++j)
     for (int k = 0; k < cols; ++k) {
       const Vec3 along = at(j, std::min(k + 1, cols - 1)) - at(j, std::max(k - 1, 0));
       const Vec3 down = at(std::min(j + 1, rows - 1), k) - at(std::max(j - 1, 0), k);
-      normals_[std::size_t(j) * cols + std::size_t(k)] = down.cross(along);
+      const Vec3 n = down.cross(along).normalized();
+      const std::size_t i = 3 * (std::size_t(j) * cols + std::size_t(k));
+      for (int c = 0; c < 3; ++c) {
+        vertices_[i + std::size_t(c)] = float(at(j, k)[c]);
+        normals_[i + std::size_t(c)] = float(n[c]);
+      }
     }
-  for (int j = 0; j + 1 < rows; ++j)
-    for (int k = 0; k + 1 < cols; ++k) {
-      const GLuint a = GLuint(j * cols + k), b = a + 1, c = a + GLuint(cols), d = c + 1;
-      indices.insert(indices.end(), {a, c, b, b, c, d});
-    }
+  if (triangle_rows_ != rows || triangle_cols_ != cols) {  // the mesh, once per lattice shape
+    triangles_.clear();
+    for (int j = 0; j + 1 < rows; ++j)
+      for (int k = 0; k + 1 < cols; ++k) {
+        const GLuint a = GLuint(j * cols + k), b = a + 1, c = a + GLuint(cols), d = c + 1;
+        triangles_.insert(triangles_.end(), {a, c, b, b, c, d});
+      }
+    triangle_rows_ = rows;
+    triangle_cols_ = cols;
+  }
   std::vector<float> uv;
   glEnable(GL_LIGHTING);
   if (options_.style == Style::kTextured) {
@@ -247,9 +260,9 @@ void FrameRenderer::draw_cloth(const FrameView& frame) {
   }
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
-  glVertexPointer(3, GL_DOUBLE, sizeof(Vec3), x.data());
-  glNormalPointer(GL_DOUBLE, sizeof(Vec3), normals_.data());
-  glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, indices.data());
+  glVertexPointer(3, GL_FLOAT, 0, vertices_.data());
+  glNormalPointer(GL_FLOAT, 0, normals_.data());
+  glDrawElements(GL_TRIANGLES, GLsizei(triangles_.size()), GL_UNSIGNED_INT, triangles_.data());
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_VERTEX_ARRAY);
   if (options_.style == Style::kTextured) {

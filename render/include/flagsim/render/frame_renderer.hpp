@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "flagsim/core/vec3.hpp"
 #include "flagsim/render/camera.hpp"
@@ -57,7 +58,9 @@ class FrameRenderer {
   OffscreenContext& context_;
   RenderOptions options_;
   unsigned texture_id_ = 0;
-  std::vector<Vec3> normals_;
+  std::vector<float> vertices_, normals_;  ///< [3 J K] this frame's, for GL
+  std::vector<unsigned> triangles_;        ///< the mesh's indices, kept between frames
+  int triangle_rows_ = 0, triangle_cols_ = 0;
 };
 
 }  // namespace flagsim::render
