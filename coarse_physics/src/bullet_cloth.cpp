@@ -70,21 +70,9 @@ BulletCloth::BulletCloth(const Scene& scene)
       const double w = inverse_mass(a) + inverse_mass(b);
       if (w > 0.0 && k > 0.0) link_limit = std::min(link_limit, 1.0 / std::sqrt(k * w));
     });
-  std::vector<double> row_sum(n, 0.0);
-  double rate = 0.0;
-  for (const auto& term : terms_) {
-    term->add_stiffness_bound(row_sum);
-    rate = std::max(rate, term->velocity_rate_bound());
-  }
-  double term_limit = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i)
-    if (!model_.pinned[i] && row_sum[i] > 0.0)
-      term_limit = std::min(term_limit, 2.0 / std::sqrt(row_sum[i] / model_.mass_kg[i]));
-  if (rate > 0.0) term_limit = std::min(term_limit, 1.0 / rate);
-  stable_substep_s_ = std::min(link_limit, term_limit);
+  stable_substep_s_ = std::min(link_limit, explicit_stability_limit(model_, terms_));
   frame_s_ = 1.0 / scene.fps;
-  const double needed = std::ceil(frame_s_ / (kStabilitySafety * stable_substep_s_) - 1e-9);
-  substeps_per_frame_ = std::max(scene.solver.substeps, int(std::min(needed, 1e9)));
+  substeps_per_frame_ = substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
   const double dt = substep_s();
 
   // The world: gravity from the world info, no air (our wind), no collisions.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "flagsim/coarse_physics/force_terms.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
@@ -21,26 +20,8 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
   effects_ = physics_effects(scene, model_);
 
   frame_s_ = 1.0 / scene.fps;
-  stable_substep_s_ = compute_stable_substep();
-  const double safe = kStabilitySafety * stable_substep_s_;
-  const double needed = std::ceil(frame_s_ / safe - 1e-9);
-  substeps_per_frame_ = std::max(scene.solver.substeps, int(std::min(needed, 1e9)));
-}
-
-double SpringDamperSolver::compute_stable_substep() const {
-  std::vector<double> row_sum(model_.lattice.node_count(), 0.0);
-  double rate = 0.0;
-  for (const auto& term : terms_) {
-    term->add_stiffness_bound(row_sum);
-    rate = std::max(rate, term->velocity_rate_bound());
-  }
-  double omega2 = 0.0;
-  for (std::size_t i = 0; i < row_sum.size(); ++i)
-    if (!model_.pinned[i]) omega2 = std::max(omega2, row_sum[i] * inverse_mass_[i]);
-  double limit = std::numeric_limits<double>::infinity();
-  if (omega2 > 0.0) limit = 2.0 / std::sqrt(omega2);
-  if (rate > 0.0) limit = std::min(limit, 1.0 / rate);
-  return limit;
+  stable_substep_s_ = explicit_stability_limit(model_, terms_);
+  substeps_per_frame_ = substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
 }
 
 ClothState SpringDamperSolver::initial_state(std::uint64_t seed) const {

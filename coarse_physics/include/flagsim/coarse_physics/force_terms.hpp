@@ -29,4 +29,14 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
 /// stretch, bending, gravity, wind, gusts, turbulence, damping, pole.
 std::vector<std::string> physics_effects(const Scene& scene, const ClothModel& model);
 
+/// Largest stable substep of explicit integration under `terms`, s: 2 / omega_max
+/// with omega_max^2 the largest block Gershgorin row sum over mass of a free
+/// node, and at most 1 / rate for velocity-dependent terms; infinity if none bounds it.
+double explicit_stability_limit(const ClothModel& model,
+                                const std::vector<std::unique_ptr<ForceTerm>>& terms);
+
+/// Substeps per frame of `frame_s`: enough for each to be at most
+/// kStabilitySafety of `stable_substep_s`, and at least `minimum` (solver.substeps).
+int substeps_per_frame(double frame_s, double stable_substep_s, int minimum);
+
 }  // namespace flagsim::physics

@@ -81,8 +81,6 @@ class SpringDamperSolver {
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
 
  private:
-  double compute_stable_substep() const;
-
   ClothModel model_;
   PinMotion pins_;
   FlagSpec flag_;
