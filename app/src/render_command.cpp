@@ -52,11 +52,13 @@ void prepare_directory(const fs::path& dir, const std::string& what) {
 
 }  // namespace
 
-RenderPlan plan_render(const RenderRequest& request, const Render* scene_render) {
+RenderPlan plan_render(const RenderRequest& request, const Scene* scene) {
+  const Render* scene_render = scene && scene->render ? &*scene->render : nullptr;
   RenderPlan plan;
   plan.output = request.output;
   if (plan.output.empty()) throw UserError("render: -o OUT.mp4 or -o DIR is required");
   plan.video = ends_with(plan.output, ".mp4");
+  plan.pole = scene && scene->flag.pin == PinSet::kLeft;
   if (scene_render) {
     plan.width = scene_render->size_px[0];
     plan.height = scene_render->size_px[1];
@@ -99,12 +101,6 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   using Clock = std::chrono::steady_clock;
   const data::OutputReader reader(h5_path);
   const int frames = reader.frame_count(), rows = reader.rows(), cols = reader.cols();
-  // The pole, when the cloth hangs from its left edge (contract: flag.pin).
-  bool pole = false;
-  try {
-    pole = parse_scene(reader.attribute("scene"), h5_path).flag.pin == PinSet::kLeft;
-  } catch (const UserError&) {  // a scene this version cannot read: no pole
-  }
   // Frame the whole run: every node of every frame, and the ground below it.
   render::Bounds bounds;
   for (int t = 0; t < frames; ++t) bounds.add(reader.positions(t));
@@ -124,7 +120,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   for (int t = 0; t < frames; ++t) {
     const std::vector<Vec3> positions = reader.positions(t);
     render::FrameView view{rows, cols, positions, std::nullopt};
-    if (pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
+    if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
     const Clock::time_point start = Clock::now();
     const render::Image image = renderer.render(view);
     const Clock::time_point drawn = Clock::now();
@@ -149,17 +145,15 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
 
 int render_command(const std::string& h5_path, const RenderRequest& request) {
   // The file first: a missing or foreign input is the first thing to say.
-  const Render* scene_render = nullptr;
   std::optional<Scene> scene;
   {
     const data::OutputReader reader(h5_path);
     try {
       scene = parse_scene(reader.attribute("scene"), h5_path);
-    } catch (const UserError&) {
+    } catch (const UserError&) {  // a scene this version cannot read: defaults, no pole
     }
   }
-  if (scene && scene->render) scene_render = &*scene->render;
-  const RenderPlan plan = plan_render(request, scene_render);
+  const RenderPlan plan = plan_render(request, scene ? &*scene : nullptr);
   fmt::print("{}\n", render_file(h5_path, plan));
   return int(ExitCode::kSuccess);
 }

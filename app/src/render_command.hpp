@@ -24,12 +24,14 @@ struct RenderPlan {
   int width = 1280, height = 720;
   render::Style style = render::Style::kShaded;
   render::Image texture;  ///< empty: the built-in pattern
+  bool pole = false;      ///< the cloth hangs from its left edge (flag.pin = "left")
 };
 
-/// Checks a request against the scene's [render] defaults (style, size,
-/// texture, when `scene_render` is given) and prepares the output destination.
-/// Throws UserError (exit 2) naming the bad flag or key; creates nothing on error.
-RenderPlan plan_render(const RenderRequest& request, const Render* scene_render);
+/// Checks a request against the run's scene (its [render] defaults for style,
+/// size and texture, and its pins; null when the scene is unknown) and prepares
+/// the output destination. Throws UserError (exit 2) naming the bad flag or
+/// key; creates nothing on error.
+RenderPlan plan_render(const RenderRequest& request, const Scene* scene);
 
 /// Draws every frame of the file `h5_path` as planned. Returns the summary line.
 std::string render_file(const std::string& h5_path, const RenderPlan& plan);
