@@ -72,7 +72,8 @@ BulletCloth::BulletCloth(const Scene& scene)
     });
   stable_substep_s_ = std::min(link_limit, explicit_stability_limit(model_, terms_));
   frame_s_ = 1.0 / scene.fps;
-  substeps_per_frame_ = substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
+  substeps_per_frame_ =
+      physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
   const double dt = substep_s();
 
   // The world: gravity from the world info, no air (our wind), no collisions.

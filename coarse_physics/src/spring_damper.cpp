@@ -21,7 +21,8 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
 
   frame_s_ = 1.0 / scene.fps;
   stable_substep_s_ = explicit_stability_limit(model_, terms_);
-  substeps_per_frame_ = substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
+  substeps_per_frame_ =
+      physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
 }
 
 ClothState SpringDamperSolver::initial_state(std::uint64_t seed) const {
