@@ -29,7 +29,7 @@ void BM_WriteFrame(benchmark::State& bench) {
     int frame = 0;
     for (auto _ : bench) {
       x[0].z() = 1e-3 * frame;  // not the same bytes every frame
-      writer.write_frame(frame / 30.0, x, {0.01, 0.001, stage_seconds, 0.01, 1.0});
+      writer.write_frame(frame / 30.0, x, {0.01, 0.001, stage_seconds, 0.01, 1.0, {}});
       ++frame;
     }
     writer.finish("complete");

@@ -42,7 +42,11 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
                    ? std::string()
                    : lattice_text(int(run.coarse_rows.size()), int(run.coarse_cols.size()));
   row.substeps = run.substeps_per_frame;
-  row.relax_iterations = scene.infill ? scene.infill->relax_iterations : 0;
+  const bool has_infill = scene.mode == Mode::kHybrid || scene.mode == Mode::kInfill;
+  if (has_infill) row.infill_solver = to_string(infill_solver_of(scene));
+  // The cap the paper solver ran with; the smooth solver has no such knob.
+  if (has_infill && infill_solver_of(scene) == InfillSolverKind::kPaper)
+    row.relax_iterations = paper_relax_sweeps_of(scene);
   row.frames = int(run.frames.size());
   row.ms_per_frame = run.ms_per_frame;
   row.physics_ms = run.physics_ms;
@@ -79,17 +83,17 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
 std::string csv_header() {
   return "point,label,mode,backend,fine,coarse,substeps,relax_iterations,frames,ms_per_frame,"
          "physics_ms,infill_ms,max_strain,p99_strain,short_horizon_rms_m,tracking_rms_m,flap_hz,"
-         "flap_rel_error,mean_shape_rms_m,wrinkle_wavelength_m,status";
+         "flap_rel_error,mean_shape_rms_m,wrinkle_wavelength_m,status,infill_solver";
 }
 
 std::string csv_line(const ReportRow& r) {
   return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{}", r.point,
+      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{}", r.point,
       r.label, r.mode, r.backend, r.fine, r.coarse, r.substeps, r.relax_iterations, r.frames,
       r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
       optional_text(r.short_horizon_rms_m), optional_text(r.tracking_rms_m),
       optional_text(r.flap_hz), optional_text(r.flap_rel_error), optional_text(r.mean_shape_rms_m),
-      optional_text(r.wrinkle_wavelength_m), r.status);
+      optional_text(r.wrinkle_wavelength_m), r.status, r.infill_solver);
 }
 
 std::vector<std::string> csv_rows(const std::string& path) {

@@ -20,6 +20,7 @@ struct ReportRow {
   std::optional<double> short_horizon_rms_m, tracking_rms_m, flap_hz, flap_rel_error,
       mean_shape_rms_m, wrinkle_wavelength_m;
   std::string status;
+  std::string infill_solver;  ///< "smooth" or "paper"; empty without an infill
 };
 
 /// Where the metrics look: the short horizon (first `horizon_s`), and the

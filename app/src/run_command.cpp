@@ -73,6 +73,16 @@ int run_command(const RunOptions& options) {
   std::tie(info.coarse_rows, info.coarse_cols) = simulation->coarse_indices();
   info.numbers = simulation->numbers();
   info.numbers.emplace_back("fps", scene.fps);
+  // The infill's own account of each frame: whether it reached its tolerance, never silently.
+  const bool has_infill = simulation->infill_report().has_value();
+  if (has_infill)
+    info.series = {{"infill_converged", "1"},
+                   {"infill_residual", "1"},
+                   {"infill_iterations", "1"},
+                   {"coarse_offset", "m"}};
+  std::vector<double> series(info.series.size());
+  int unconverged_frames = 0;
+  double worst_residual = 0.0;
   const Lattice& lattice = simulation->lattice();
   data::FrameWriter writer(output_path_of(options, scene), lattice, info, scene.output.flush_every);
 
@@ -106,8 +116,15 @@ int run_command(const RunOptions& options) {
         out_of_room = true;
         break;
       }
-      data::FrameStats stats{strain.max, strain.mean, times.seconds(), seconds_since(since_write),
-                             simulation->kinetic_energy_j()};
+      if (has_infill) {
+        const infill::FillReport report = *simulation->infill_report();
+        series = {report.converged ? 1.0 : 0.0, report.residual, double(report.iterations),
+                  report.coarse_offset_m};
+        unconverged_frames += report.converged ? 0 : 1;
+        worst_residual = std::max(worst_residual, report.residual);
+      }
+      data::FrameStats stats{strain.max,      strain.mean, times.seconds(), seconds_since(since_write),
+                             simulation->kinetic_energy_j(), series};
       // Frame times are n / fps exactly, not the sum of the substeps.
       writer.write_frame(frame / scene.fps, positions, stats, simulation->coarse_positions());
       times.reset();
@@ -145,6 +162,10 @@ int run_command(const RunOptions& options) {
   fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
              status, writer.frames_written(), lattice.rows, lattice.cols, to_string(scene.mode),
              ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
+  if (unconverged_frames > 0)
+    fmt::print("note: the infill did not reach its tolerance in {} of {} frames (worst link {:.3f}% "
+               "beyond it; /stats/infill_converged)\n",
+               unconverged_frames, writer.frames_written(), 100.0 * worst_residual);
   if (!rendered.empty()) fmt::print("{}\n", rendered);
   return status == "interrupted" ? int(ExitCode::kInterrupted) : int(ExitCode::kSuccess);
 }

@@ -5,7 +5,7 @@
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
-#include "flagsim/infill/infill_solver.hpp"
+#include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/keyframes.hpp"
 #include "flagsim/infill/strain_limit.hpp"
 
@@ -68,11 +68,13 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
 // for the divergence checks.
 class DenseInfill {
  public:
-  DenseInfill(const Scene& scene, int coarse_rows, int coarse_cols, int default_relax_sweeps)
+  DenseInfill(const Scene& scene, int coarse_rows, int coarse_cols)
       : lattice_(scene.fine_lattice()),
-        solver_(lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
-                scene.infill ? scene.infill->relax_iterations : default_relax_sweeps,
-                wrinkle_params(scene), scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0),
+        solver_(infill::make_infill(
+            lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
+            {infill_solver_of(scene),
+             paper_relax_sweeps_of(scene),
+             wrinkle_params(scene), scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()) {
     positions_ = lattice_.rest_positions();
@@ -85,10 +87,15 @@ class DenseInfill {
     velocities_.assign(positions_.size(), Vec3::Zero());
   }
   const Lattice& lattice() const { return lattice_; }
-  const infill::InfillSolver& solver() const { return solver_; }
+  const infill::InfillMethod& solver() const { return *solver_; }
   /// Pinned dense nodes stay where 3.1 puts them (on the pinned coarse lines).
-  void hold_pins(PinSet pin) { solver_.hold(physics::pinned_nodes(lattice_, pin)); }
-  void register_stages(StageTimes& times) { solver_.register_stages(times); }
+  void hold_pins(PinSet pin) { solver_->hold(physics::pinned_nodes(lattice_, pin)); }
+  void hold_corners() {
+    std::vector<std::uint8_t> corners(lattice_.node_count(), 0);
+    for (std::size_t c : lattice_.corners()) corners[c] = 1;
+    solver_->hold(corners);
+  }
+  void register_stages(StageTimes& times) { solver_->register_stages(times); }
   /// Effects of the infill, after those of whatever drives the coarse nodes.
   void add_effects(std::vector<std::string>& effects) const {
     effects.emplace_back("infill");
@@ -97,7 +104,7 @@ class DenseInfill {
   /// New dense lattice from the coarse nodes [Jc*Kc]; velocities over 1/fps.
   void fill(std::span<const Vec3> coarse_m, StageTimes* times) {
     std::copy(positions_.begin(), positions_.end(), previous_.begin());
-    solver_.fill(coarse_m, positions_, times);
+    solver_->fill(coarse_m, positions_, times);
     for (std::size_t i = 0; i < positions_.size(); ++i)
       velocities_[i] = (positions_[i] - previous_[i]) * fps_;
   }
@@ -107,7 +114,7 @@ class DenseInfill {
 
  private:
   Lattice lattice_;
-  infill::InfillSolver solver_;
+  std::unique_ptr<infill::InfillMethod> solver_;
   double fps_;
   bool wrinkles_;
   std::vector<Vec3> positions_, previous_, velocities_;
@@ -119,8 +126,9 @@ class InfillSimulation final : public Simulation {
  public:
   explicit InfillSimulation(const Scene& scene)
       : scene_(scene),
-        dense_(scene, 2, 2, kDefaultRelaxSweeps),
+        dense_(scene, 2, 2),
         mass_kg_(physics::make_cloth_model(scene).mass_kg) {
+    dense_.hold_corners();  // the keyframes give them exactly
     fill(0.0, nullptr);  // frame 0: the corners of the first keyframe
     dense_.forget_velocities();
   }
@@ -144,16 +152,15 @@ class InfillSimulation final : public Simulation {
     for (std::size_t i = 0; i < v.size(); ++i) total += 0.5 * mass_kg_[i] * v[i].squaredNorm();
     return total;
   }
+  std::optional<infill::FillReport> infill_report() const override {
+    return dense_.solver().last_report();
+  }
   std::string stepping_summary() const override {
     return fmt::format("{} relaxation sweeps in the last frame",
-                       dense_.solver().last_relax_sweeps());
+                       dense_.solver().last_report().iterations);
   }
 
  private:
-  // One cell spans the whole flag, so 3.4 needs many passes; it stops early
-  // once converged (twisted.toml at 33 x 49: 0.78% max strain with 1000, 1.7% with 200).
-  static constexpr int kDefaultRelaxSweeps = 1000;
-
   void fill(double time_s, StageTimes* times) {
     const auto corners = infill::corners_at(scene_.keyframes, time_s);
     dense_.fill(corners, times);
@@ -182,7 +189,8 @@ class HybridSimulation final : public Simulation {
   explicit HybridSimulation(const Scene& scene)
       : coarse_scene_(coarse_scene_of(scene)),
         physics_(integrator_for(coarse_scene_)),
-        dense_(scene, (*scene.flag.coarse)[0], (*scene.flag.coarse)[1], kDefaultRelaxSweeps) {
+        dense_(scene, (*scene.flag.coarse)[0], (*scene.flag.coarse)[1]),
+        paper_infill_(infill_solver_of(scene) == InfillSolverKind::kPaper) {
     dense_.hold_pins(scene.flag.pin);
     make_reachable();  // frame 0: the coarse nodes where the physics starts
     dense_.fill(reachable_, nullptr);
@@ -218,6 +226,9 @@ class HybridSimulation final : public Simulation {
     return indices;
   }
   double kinetic_energy_j() const override { return physics_->kinetic_energy(); }
+  std::optional<infill::FillReport> infill_report() const override {
+    return dense_.solver().last_report();
+  }
   std::string stepping_summary() const override {
     return fmt::format("{} substeps/frame of {:.3g} s on {} x {} coarse nodes",
                        physics_->substeps_per_frame(), physics_->substep_s(),
@@ -225,12 +236,6 @@ class HybridSimulation final : public Simulation {
   }
 
  private:
-  // 3.4 is Gauss-Seidel projection; on a nearly inextensible net it converges
-  // slowly (the worst link's error falls about as 1/passes): on the default
-  // scene at 129 x 193 a frame needs ~1400 passes on average to bring every
-  // link within kRelaxTolerance, a few frames over 5000. The cap is what keeps
-  // the dense strain under 1% on every frame of that scene.
-  static constexpr int kDefaultRelaxSweeps = 8000;
   // The coarse nodes handed to the infill are pulled in (infill::limit_stretch)
   // until no coarse row or column link is longer than (1 - kCoarseSlack) of its
   // rest length. A coarse link stretched by the physics leaves the dense fiber
@@ -244,11 +249,11 @@ class HybridSimulation final : public Simulation {
 
   Scene coarse_scene_;
   std::unique_ptr<physics::ClothIntegrator> physics_;
-  // With the coarse lattice equal to the fine one there are no fibers to fill
-  // between coarse nodes, and no slack to make.
+  // Only the paper solver needs slack; with the coarse lattice equal to the
+  // fine one there are no fibers to fill between coarse nodes either.
   bool needs_slack() const {
     const infill::CellGrid& grid = dense_.solver().grid();
-    return grid.row_stride > 1 || grid.col_stride > 1;
+    return paper_infill_ && (grid.row_stride > 1 || grid.col_stride > 1);
   }
   void make_reachable() {
     reachable_ = physics_->state().x_m;
@@ -260,6 +265,7 @@ class HybridSimulation final : public Simulation {
   std::vector<Vec3> reachable_;  ///< the coarse nodes handed to the infill
   int slack_stage_ = -1;
   DenseInfill dense_;
+  bool paper_infill_;
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 // What `flag-sim run` drives, whatever the mode: a state advanced frame by
 // frame, read by the run loop (checks, output) but never reached into.
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -10,6 +11,7 @@
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
+#include "flagsim/infill/infill_method.hpp"
 
 namespace flagsim::app {
 
@@ -33,6 +35,8 @@ class Simulation {
   virtual std::span<const Vec3> coarse_positions() const { return {}; }
   /// Dense row and column index of each coarse row and column; empty with no coarse nodes.
   virtual std::pair<std::vector<int>, std::vector<int>> coarse_indices() const { return {}; }
+  /// What the infill did in the last frame, in the modes that have one.
+  virtual std::optional<infill::FillReport> infill_report() const { return std::nullopt; }
   /// What the summary line says about the stepping ("1001 substeps/frame of 3.3e-05 s").
   virtual std::string stepping_summary() const = 0;
 };

@@ -58,6 +58,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "wrinkles.tolerance",
                                          "wrinkles.rounds",
                                          "infill.relax_iterations",
+                                         "infill.solver",
                                          "solver.backend",
                                          "solver.substeps",
                                          "solver.iterations",
@@ -233,7 +234,14 @@ void read_infill_tables(TableReader& root, Scene& scene) {
   }
   if (const toml::table* t = root.subtable("infill")) {
     TableReader in(*t, "infill", root.where_of("infill"));
-    scene.infill = InfillSettings{int(in.integer("relax_iterations", 20, 0, 100000))};
+    InfillSettings settings;
+    if (auto sweeps = in.optional_integer("relax_iterations", 1, 100000))
+      settings.relax_iterations = int(*sweeps);
+    if (in.has("solver"))
+      settings.solver = in.choice("solver", "smooth", {"smooth", "paper"}) == "smooth"
+                            ? InfillSolverKind::kSmooth
+                            : InfillSolverKind::kPaper;
+    scene.infill = settings;
     in.finish(kAllKeys);
   }
   if (const toml::node* frames = root.table().get("keyframe")) {

@@ -83,6 +83,7 @@ struct FrameWriter::Impl {
   h5::Handle file;
   h5::Handle time, positions, max_strain, mean_strain, stage_seconds, wall_seconds, kinetic;
   h5::Handle coarse_positions;
+  std::vector<h5::Handle> series;
   std::vector<float> position_buffer, coarse_buffer;
   std::vector<double> times;
   std::size_t stage_count = 0;
@@ -138,6 +139,11 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   impl_->wall_seconds = make_series(stats.get(), "wall_seconds", H5T_IEEE_F64LE, {});
   impl_->kinetic = make_series(stats.get(), "kinetic_energy", H5T_IEEE_F64LE, {});
   ok = ok && h5::write_string_list_attribute(impl_->stage_seconds.get(), "stages", info.stages);
+  for (const RunInfo::Series& series : info.series) {
+    impl_->series.push_back(make_series(stats.get(), series.name.c_str(), H5T_IEEE_F64LE, {}));
+    ok = ok && impl_->series.back().valid() &&
+         h5::write_string_attribute(impl_->series.back().get(), "units", series.units);
+  }
   if (!info.coarse_rows.empty()) ok = ok && write_coarse_layout(root, info);
 
   // /lattice/rest_positions [J, K, 3] float32
@@ -207,6 +213,10 @@ void FrameWriter::write_frame(double time_s, std::span<const Vec3> positions_m,
         append_row(impl_->stage_seconds.get(), index, H5T_NATIVE_DOUBLE, stage_row.data())) &&
        append_row(impl_->wall_seconds.get(), index, H5T_NATIVE_DOUBLE, &wall_s) &&
        append_row(impl_->kinetic.get(), index, H5T_NATIVE_DOUBLE, &stats.kinetic_energy_j);
+  for (std::size_t i = 0; i < impl_->series.size(); ++i) {
+    const double value = i < stats.series.size() ? stats.series[i] : 0.0;
+    ok = ok && append_row(impl_->series[i].get(), index, H5T_NATIVE_DOUBLE, &value);
+  }
   if (!ok)
     throw IoError(fmt::format("{}: writing frame {} failed (disk full?)", partial_path(), frames_));
   ++frames_;

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <optional>
 
+#include "flagsim/core/strain.hpp"
 #include "flagsim/infill/boundary.hpp"
 #include "flagsim/infill/initial_move.hpp"
 #include "flagsim/infill/length_search.hpp"
 #include "flagsim/infill/relax.hpp"
+#include "flagsim/infill/smooth_infill.hpp"
 
 namespace flagsim::infill {
 
@@ -119,6 +121,7 @@ void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   const int steps = std::max(1, int(std::ceil(largest_motion / (kMaxStepFraction * cell_side))));
   last_steps_ = steps;
   last_sweeps_ = 0;
+  capped_ = false;
   for (int s = 1; s <= steps; ++s) {
     const double t = double(s) / steps;
     for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
@@ -126,13 +129,23 @@ void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
           s == steps ? coarse_m[c] : Vec3(coarse_start_[c] + t * (coarse_m[c] - coarse_start_[c]));
     deform(coarse_step_, positions_m, times);
   }
+  report_.converged = !capped_;
+  report_.iterations = last_sweeps_;
+  report_.residual =
+      capped_ ? std::max(0.0, link_strain(lattice_, positions_m).max - kRelaxTolerance) : 0.0;
+  report_.coarse_offset_m = 0.0;
+  for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
+    report_.coarse_offset_m =
+        std::max(report_.coarse_offset_m, (positions_m[coarse_dense_[c]] - coarse_m[c]).norm());
 }
 
 void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m,
                           StageTimes* times) {
   auto timed = [&](int step, auto&& work) { run_timed(times, stage_[step], work); };
   auto relax = [&] {  // 3.4
-    last_sweeps_ += relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
+    const int sweeps = relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
+    last_sweeps_ += sweeps;
+    capped_ = capped_ || sweeps >= relax_sweeps_;
   };
   std::copy(positions_m.begin(), positions_m.end(), previous_.begin());
   timed(0, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
@@ -163,6 +176,14 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
     timed(4, [&] { rewrinkle(positions_m); });
     timed(3, relax);
   }
+}
+
+std::unique_ptr<InfillMethod> make_infill(const Lattice& fine, const CellGrid& grid,
+                                          const InfillOptions& options) {
+  if (options.solver == InfillSolverKind::kPaper)
+    return std::make_unique<InfillSolver>(fine, grid, options.relax_sweeps, options.wrinkles,
+                                          options.wrinkle_rounds);
+  return std::make_unique<SmoothInfill>(fine, grid);
 }
 
 }  // namespace flagsim::infill

@@ -40,7 +40,7 @@ TEST(FrameWriter, RoundTripThroughTheCApi) {
     const double stages[3] = {0.25, 0.5, 0.0};
     for (int t = 0; t < 3; ++t) {
       for (Vec3& p : x) p.z() = 0.1 * t;
-      writer.write_frame(t / 30.0, x, FrameStats{0.01 * t, 0.001 * t, stages, 1.0, 2.0});
+      writer.write_frame(t / 30.0, x, FrameStats{0.01 * t, 0.001 * t, stages, 1.0, 2.0, {}});
     }
     writer.finish("complete");
   }

@@ -43,6 +43,10 @@ with tempfile.TemporaryDirectory() as tmp:
             "stats/max_strain": (np.float32, (T,)),
             "stats/mean_strain": (np.float32, (T,)),
             "stats/wall_seconds": (np.float64, (T,)),
+            "stats/infill_converged": (np.float64, (T,)),
+            "stats/infill_residual": (np.float64, (T,)),
+            "stats/infill_iterations": (np.float64, (T,)),
+            "stats/coarse_offset": (np.float64, (T,)),
         }
         for path, (dtype, shape) in expect.items():
             check(path in f, f"missing {path}")
@@ -50,8 +54,14 @@ with tempfile.TemporaryDirectory() as tmp:
                 check(f[path].dtype == dtype, f"{path} dtype {f[path].dtype}")
                 check(f[path].shape == shape, f"{path} shape {f[path].shape}")
         stages = list(f["stats/stage_seconds"].attrs["stages"])
-        check(stages == ["stretch", "gravity", "wind", "integrate", "coarse_slack", "infill_3.1",
-                         "infill_3.2", "infill_3.3", "infill_3.4", "checks", "output"], f"stages {stages}")
+        check(stages == ["stretch", "gravity", "wind", "integrate", "infill_3.1", "infill_3.3",
+                         "infill_3.4", "checks", "output"], f"stages {stages}")
+        check(f["stats/coarse_offset"].attrs["units"] == "m", "coarse_offset units")
+        check(np.all(f["stats/infill_converged"][...] == 1), "the infill converged on every frame")
+        # The dense counterpart of each coarse node is as far from it as the file says.
+        dense = f["frames/positions"][...].astype(np.float64)[:, ::2, ::2]
+        offset = np.linalg.norm(dense - f["coarse/positions"][...], axis=-1).max(axis=(1, 2))
+        check(np.allclose(offset, f["stats/coarse_offset"][...], atol=1e-6), "coarse_offset")
         check(list(f["coarse/rows"][...]) == list(range(0, 17, 2)), "coarse rows")
         check(f["stats/stage_seconds"].shape == (T, len(stages)), "stage_seconds shape")
         rest = f["lattice/rest_positions"][...]

@@ -80,8 +80,17 @@ struct Wrinkles {
   std::optional<int> rounds;
 };
 
+/// Which infill fills the dense lattice ([infill] solver).
+enum class InfillSolverKind {
+  kSmooth,  ///< whole-fiber infill on the coarse nodes' mean surface (hybrid default)
+  kPaper,   ///< per-cell steps 3.1-3.5 with point-wise relaxation (infill-mode default)
+};
+
 struct InfillSettings {
-  int relax_iterations = 0;
+  /// Most passes of the paper solver's step 3.4; absent: its default for the mode.
+  std::optional<int> relax_iterations;
+  /// Absent: the mode's default (default_infill_solver).
+  std::optional<InfillSolverKind> solver;
 };
 
 struct Solver {
@@ -142,6 +151,12 @@ struct Scene {
 };
 
 const char* to_string(Mode mode);
+const char* to_string(InfillSolverKind kind);
+/// The infill a scene runs: [infill] solver, else smooth in hybrid mode (it
+/// follows many coarse nodes) and paper in infill mode (corners only, Figs. 9-10).
+InfillSolverKind infill_solver_of(const Scene& scene);
+/// The paper solver's 3.4 cap: [infill] relax_iterations, else the mode's default.
+int paper_relax_sweeps_of(const Scene& scene);
 const char* to_string(PinSet pin);
 
 }  // namespace flagsim

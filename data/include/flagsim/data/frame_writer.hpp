@@ -42,6 +42,12 @@ struct RunInfo {
   std::vector<int> coarse_rows, coarse_cols;
   /// Further numeric root attributes (substep_seconds, ...).
   std::vector<std::pair<std::string, double>> numbers;
+  /// Further per-frame statistics, float64 [T] under /stats/NAME with attribute
+  /// `units`: the stage's own (infill_converged, ...), in FrameStats::series order.
+  struct Series {
+    std::string name, units;
+  };
+  std::vector<Series> series;
 };
 
 /// Per-frame statistics.
@@ -51,6 +57,7 @@ struct FrameStats {
   std::span<const double> stage_seconds;  ///< one per RunInfo::stages
   double wall_seconds = 0.0;  ///< since the last written frame, before this write (added)
   double kinetic_energy_j = 0.0;
+  std::span<const double> series;  ///< one per RunInfo::series
 };
 
 class FrameWriter {

@@ -30,6 +30,7 @@
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/fiber.hpp"
+#include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/wrinkles.hpp"
 
 namespace flagsim::infill {
@@ -49,7 +50,8 @@ inline constexpr double kLengthTolerance = 0.0001;
 /// every frame, 30x the time, while the worst link sat at 0.08-0.1%.)
 inline constexpr double kRelaxTolerance = 0.005;
 
-class InfillSolver {
+/// The paper solver: [infill] solver = "paper".
+class InfillSolver final : public InfillMethod {
  public:
   /// @param relax_sweeps  most passes of 3.4 per deformation step ([infill] relax_iterations)
   /// @param wrinkles      step 3.5, or nullopt to leave it out (no [wrinkles] table)
@@ -60,18 +62,20 @@ class InfillSolver {
   /// Holds these dense nodes ([J*K], 1 = held) in 3.4 as well as the coarse
   /// ones: the pinned nodes of a physics-driven cloth, which lie on coarse
   /// lines between pinned coarse nodes and are placed there by 3.1.
-  void hold(std::span<const std::uint8_t> nodes);
+  void hold(std::span<const std::uint8_t> nodes) override;
 
   /// Registers the timing columns "infill_3.1" ... "infill_3.4" (and "infill_3.5").
-  void register_stages(StageTimes& times);
+  void register_stages(StageTimes& times) override;
 
   /// @param coarse_m     new coarse node positions [Jc*Kc], m
   /// @param positions_m  in: the previous dense lattice [J*K]; out: the new one
-  void fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m, StageTimes* times);
+  void fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
+            StageTimes* times) override;
+  FillReport last_report() const override { return report_; }
 
   int last_deformation_steps() const { return last_steps_; }
   int last_relax_sweeps() const { return last_sweeps_; }
-  const CellGrid& grid() const { return grid_; }
+  const CellGrid& grid() const override { return grid_; }
 
  private:
   void deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m,
@@ -105,6 +109,8 @@ class InfillSolver {
   std::vector<Vec3> coarse_start_, coarse_step_;
   int stage_[5] = {-1, -1, -1, -1, -1};
   int last_steps_ = 0, last_sweeps_ = 0;
+  bool capped_ = false;  ///< some 3.4 call of the last fill() ran to its cap
+  FillReport report_;
 };
 
 }  // namespace flagsim::infill

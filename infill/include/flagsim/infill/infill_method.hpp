@@ -1,0 +1,57 @@
+#pragma once
+// The infill behind one small interface, so that a scene (and a sweep) can
+// choose it: [infill] solver = "smooth" (smooth_infill.hpp) or "paper"
+// (infill_solver.hpp).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/scene.hpp"
+#include "flagsim/core/stage_times.hpp"
+#include "flagsim/infill/cell_grid.hpp"
+#include "flagsim/infill/wrinkles.hpp"
+
+namespace flagsim::infill {
+
+/// What the last fill() did, for the per-frame statistics and the summary.
+struct FillReport {
+  /// Whether every link reached the solver's tolerance (paper: 3.4 stopped
+  /// before its cap; smooth: the projection converged).
+  bool converged = true;
+  /// Largest relative link error left outside what the solver aimed for (0 when converged).
+  double residual = 0.0;
+  /// Iterations of the solver's 3.4 (paper: passes; smooth: row-then-column rounds).
+  int iterations = 0;
+  /// Largest distance of a coarse node's dense counterpart from the coarse node, m.
+  double coarse_offset_m = 0.0;
+};
+
+struct InfillOptions {
+  InfillSolverKind solver = InfillSolverKind::kSmooth;
+  int relax_sweeps = 1000;  ///< the paper solver's 3.4 cap
+  std::optional<WrinkleParams> wrinkles;
+  int wrinkle_rounds = 2;  ///< 3.5/3.4 alternations (paper solver)
+};
+
+class InfillMethod {
+ public:
+  virtual ~InfillMethod() = default;
+  /// Holds these dense nodes ([J*K], 1 = held): the pinned nodes of the cloth.
+  virtual void hold(std::span<const std::uint8_t> nodes) = 0;
+  /// Registers the timing columns, "infill_3.1" ... in pipeline order.
+  virtual void register_stages(StageTimes& times) = 0;
+  /// @param coarse_m     new coarse node positions [Jc*Kc], m
+  /// @param positions_m  in: the previous dense lattice [J*K]; out: the new one
+  virtual void fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
+                    StageTimes* times) = 0;
+  virtual FillReport last_report() const = 0;
+  virtual const CellGrid& grid() const = 0;
+};
+
+std::unique_ptr<InfillMethod> make_infill(const Lattice& fine, const CellGrid& grid,
+                                          const InfillOptions& options);
+
+}  // namespace flagsim::infill
