@@ -17,7 +17,7 @@
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "render_command.hpp"
-#include "simulation.hpp"
+#include "flagsim/hybrid/simulation.hpp"
 
 namespace flagsim::app {
 namespace {
@@ -56,7 +56,7 @@ int run_command(const RunOptions& options) {
     throw UserError("--size, --style and --texture go with --render OUT.mp4|DIR");
   }
 
-  const std::unique_ptr<Simulation> simulation = make_simulation(scene);
+  const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   StageTimes times;
   simulation->register_stages(times);
   const int checks_stage = times.add("checks");

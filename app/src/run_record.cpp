@@ -8,7 +8,7 @@
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
-#include "simulation.hpp"
+#include "flagsim/hybrid/simulation.hpp"
 
 namespace flagsim::app {
 namespace {
@@ -49,7 +49,7 @@ bool frame_is_good(RunRecord& record, const Scene& scene, std::span<const Vec3> 
 }  // namespace
 
 RunRecord record_run(const Scene& scene) {
-  const std::unique_ptr<Simulation> simulation = make_simulation(scene);
+  const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   StageTimes times;
   simulation->register_stages(times);
   RunRecord record;

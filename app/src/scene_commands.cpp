@@ -4,7 +4,7 @@
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/scene_parser.hpp"
-#include "simulation.hpp"
+#include "flagsim/hybrid/simulation.hpp"
 
 namespace flagsim::app {
 
@@ -15,7 +15,7 @@ Scene load_scene(const std::string& scene_path, const std::vector<std::string>& 
 
 int validate_command(const std::string& scene_path) {
   const Scene scene = load_scene(scene_path, {});
-  const std::unique_ptr<Simulation> simulation = make_simulation(scene);
+  const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   std::string stepping;
   for (const auto& [name, value] : simulation->numbers())
     stepping += fmt::format(", {} {:.4g}", name, value);

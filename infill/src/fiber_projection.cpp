@@ -4,6 +4,10 @@
 #include <cassert>
 #include <cmath>
 
+// Lanes (below) are passed by value only between inlined helpers of this
+// file, never across an ABI boundary.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace flagsim::infill {
 namespace {
 
@@ -21,7 +25,7 @@ FiberProjection::FiberProjection(const Lattice& fine)
       col_bands_(std::size_t(fine.rows - 1) * std::size_t(fine.cols)) {
   const std::size_t lanes = std::size_t(std::max(fine.rows, fine.cols)) * kLanes;
   for (std::vector<double>* buffer :
-       {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_, &length_, &diag_, &off_, &rhs_})
+       {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_, &diag_, &off_, &rhs_})
     buffer->resize(lanes);
   set_uniform_band(0.0);
 }
@@ -36,102 +40,123 @@ void FiberProjection::set_uniform_band(double band) {
   std::fill(col_bands_.begin(), col_bands_.end(), LinkBand{1.0 - band, 1.0 + band});
 }
 
-// The lane loops below have a fixed trip count and no branches, so the
-// compiler vectorises them across fibers; the AVX2 clone is picked at run time
-// where the CPU has it (the same IEEE operations either way: same bits).
+// The lanes as one vector of doubles (GCC's vector extension: two SSE2
+// registers on any x86-64, one AVX register in the AVX2 clone, picked at run
+// time). Element-wise IEEE operations only, no fused multiply-add: the same
+// bits on either path.
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
+static_assert(sizeof(Lanes) == kLanes * sizeof(double));
+
+Lanes load(const double* p) {
+  Lanes v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+void store(double* p, Lanes v) { __builtin_memcpy(p, &v, sizeof v); }
+Lanes splat(double value) { return Lanes{} + value; }
+
 __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lanes(
     int links, double rest_m, double tolerance, int steps, int* steps_made) {
   constexpr int L = kLanes;
-  const double inv_rest = 1.0 / rest_m, degenerate_m = 1e-12 * rest_m;
-  double* __restrict x = x_.data();
-  double* __restrict y = y_.data();
-  double* __restrict z = z_.data();
-  const double* __restrict w = w_.data();
-  const double* __restrict lo = lower_.data();
-  const double* __restrict hi = upper_.data();
-  double* __restrict nx = nx_.data();
-  double* __restrict ny = ny_.data();
-  double* __restrict nz = nz_.data();
-  double* __restrict inverse_pivot = diag_.data();
-  double* __restrict c = off_.data();
-  double* __restrict d = rhs_.data();
-  double* __restrict length = length_.data();
-  const int count = links * L;  // link a = i L + l joins node a and node a + L
+  const Lanes zero = splat(0.0), one = splat(1.0), rest = splat(rest_m),
+              inv_rest = splat(1.0 / rest_m), degenerate = splat(1e-12 * rest_m);
+  double* const x = x_.data();
+  double* const y = y_.data();
+  double* const z = z_.data();
+  const double* const w = w_.data();
+  double* const nx = nx_.data();
+  double* const ny = ny_.data();
+  double* const nz = nz_.data();
+  double* const inverse_pivot = diag_.data();
+  double* const c = off_.data();
+  double* const d = rhs_.data();
   for (int step = 0; step < steps; ++step) {
     // Constraint values C_i = |x_{i+1} - x_i| - clamp(|.|, lower S, upper S)
     // (d = -C), link directions n_i, and each lane's worst excess.
-    for (int a = 0; a < count; ++a) {
-      const double dx = x[a + L] - x[a], dy = y[a + L] - y[a], dz = z[a + L] - z[a];
-      length[a] = std::sqrt(dx * dx + dy * dy + dz * dz);
-    }
-    for (int a = 0; a < count; ++a) {
-      const double relative = length[a] * inv_rest;
-      d[a] = (std::min(std::max(relative, lo[a]), hi[a]) - relative) * rest_m;
+    Lanes worst = zero;
+    for (int i = 0; i < links; ++i) {
+      const int a = i * L, b = a + L;
+      const Lanes dx = load(x + b) - load(x + a), dy = load(y + b) - load(y + a),
+                  dz = load(z + b) - load(z + a);
+      Lanes length;
+      const Lanes length2 = dx * dx + dy * dy + dz * dz;
+      for (int l = 0; l < L; ++l) length[l] = std::sqrt(length2[l]);
+      const Lanes relative = length * inv_rest;
+      const Lanes low = load(lower_.data() + a), high = load(upper_.data() + a);
+      Lanes target = relative < low ? low : relative;
+      target = target > high ? high : target;
+      const Lanes error = target - relative;
+      const Lanes magnitude = error < zero ? -error : error;
+      worst = magnitude > worst ? magnitude : worst;
+      store(d + a, error * rest);
       // A zero-length link has no direction; any unit vector keeps the system regular.
-      const bool degenerate = length[a] <= degenerate_m;
-      const double inv = 1.0 / (degenerate ? 1.0 : length[a]);
-      nx[a] = degenerate ? 1.0 : (x[a + L] - x[a]) * inv;
-      ny[a] = degenerate ? 0.0 : (y[a + L] - y[a]) * inv;
-      nz[a] = degenerate ? 0.0 : (z[a + L] - z[a]) * inv;
+      const auto is_degenerate = length <= degenerate;
+      const Lanes inv = one / (is_degenerate ? one : length);
+      store(nx + a, is_degenerate ? one : dx * inv);
+      store(ny + a, is_degenerate ? zero : dy * inv);
+      store(nz + a, is_degenerate ? zero : dz * inv);
     }
-    double worst[L] = {};
-    for (int i = 0; i < links; ++i)
-      for (int l = 0; l < L; ++l) worst[l] = std::max(worst[l], std::abs(d[i * L + l]) * inv_rest);
     // A lane within tolerance makes no step (its right-hand side is zeroed).
+    const auto moves = worst > splat(tolerance);
     bool any = false;
-    double moving[L];
     for (int l = 0; l < L; ++l) {
-      moving[l] = worst[l] > tolerance ? 1.0 : 0.0;
-      any = any || worst[l] > tolerance;
-      *steps_made += worst[l] > tolerance ? 1 : 0;
+      any = any || moves[l];
+      *steps_made += moves[l] ? 1 : 0;
     }
     if (!any) return;
+    const Lanes moving = moves ? one : zero;
     // (grad C) W (grad C)^T mu = -C is tridiagonal: diagonal w_i + w_{i+1},
     // off-diagonal A[i][i+1] = A[i+1][i] = -w_{i+1} (n_i . n_{i+1}). Thomas
-    // algorithm, forward elimination: c' into c, d' into d.
-    for (int l = 0; l < L; ++l) {
-      const double diag = w[l] + w[l + L];
-      const bool both_held = diag == 0.0;  // nothing to solve for
-      inverse_pivot[l] = 1.0 / (both_held ? 1.0 : diag);
-      d[l] = both_held ? 0.0 : d[l] * moving[l] * inverse_pivot[l];
+    // algorithm, forward elimination: c' into c, d' into d. A link with both
+    // ends held has nothing to solve for (diagonal 1, right-hand side 0).
+    {
+      const Lanes diag = load(w) + load(w + L);
+      const auto both_held = diag == zero;
+      store(inverse_pivot, one / (both_held ? one : diag));
+      store(d, both_held ? zero : load(d) * moving * load(inverse_pivot));
     }
-    for (int i = 0; i + 1 < links; ++i)
-      for (int l = 0; l < L; ++l) {
-        const int a = i * L + l, b = a + L;
-        const double upper = -w[b] * (nx[a] * nx[b] + ny[a] * ny[b] + nz[a] * nz[b]);
-        c[a] = upper * inverse_pivot[a];
-        const double diag = w[b] + w[b + L];
-        const bool both_held = diag == 0.0;
-        inverse_pivot[b] = 1.0 / ((both_held ? 1.0 : diag) - upper * c[a]);
-        d[b] = both_held ? 0.0 : (d[b] * moving[l] - upper * d[a]) * inverse_pivot[b];
-      }
+    for (int i = 0; i + 1 < links; ++i) {
+      const int a = i * L, b = a + L;
+      const Lanes upper = -load(w + b) * (load(nx + a) * load(nx + b) + load(ny + a) * load(ny + b) +
+                                          load(nz + a) * load(nz + b));
+      const Lanes ca = upper * load(inverse_pivot + a);
+      store(c + a, ca);
+      const Lanes diag = load(w + b) + load(w + b + L);
+      const auto both_held = diag == zero;
+      const Lanes ib = one / ((both_held ? one : diag) - upper * ca);
+      store(inverse_pivot + b, ib);
+      store(d + b, both_held ? zero : (load(d + b) * moving - upper * load(d + a)) * ib);
+    }
     // Back substitution: mu_i = d'_i - c'_i mu_{i+1}, into d.
-    for (int i = links - 2; i >= 0; --i)
-      for (int l = 0; l < L; ++l) {
-        const int a = i * L + l;
-        d[a] -= c[a] * d[a + L];
-      }
-    // dx_j = w_j (mu_{j-1} n_{j-1} - mu_j n_j); the ends have one link each.
-    for (int l = 0; l < L; ++l) {
-      x[l] -= w[l] * d[l] * nx[l];
-      y[l] -= w[l] * d[l] * ny[l];
-      z[l] -= w[l] * d[l] * nz[l];
-      const int e = links * L + l, p = e - L;
-      x[e] += w[e] * d[p] * nx[p];
-      y[e] += w[e] * d[p] * ny[p];
-      z[e] += w[e] * d[p] * nz[p];
+    for (int i = links - 2; i >= 0; --i) {
+      const int a = i * L;
+      store(d + a, load(d + a) - load(c + a) * load(d + a + L));
     }
-    for (int j = 1; j < links; ++j)
-      for (int l = 0; l < L; ++l) {
-        const int a = j * L + l, p = a - L;
-        x[a] += w[a] * (d[p] * nx[p] - d[a] * nx[a]);
-        y[a] += w[a] * (d[p] * ny[p] - d[a] * ny[a]);
-        z[a] += w[a] * (d[p] * nz[p] - d[a] * nz[a]);
+    // dx_j = w_j (mu_{j-1} n_{j-1} - mu_j n_j); the ends have one link each.
+    for (int j = 0; j <= links; ++j) {
+      const int a = j * L, p = a - L;
+      Lanes fx = zero, fy = zero, fz = zero;
+      if (j > 0) {
+        const Lanes mu = load(d + p);
+        fx += mu * load(nx + p);
+        fy += mu * load(ny + p);
+        fz += mu * load(nz + p);
       }
+      if (j < links) {
+        const Lanes mu = load(d + a);
+        fx -= mu * load(nx + a);
+        fy -= mu * load(ny + a);
+        fz -= mu * load(nz + a);
+      }
+      const Lanes wj = load(w + a) * splat(omega_);
+      store(x + a, load(x + a) + wj * fx);
+      store(y + a, load(y + a) + wj * fy);
+      store(z + a, load(z + a) + wj * fz);
+    }
   }
 }
 
-double FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, double tolerance,
+bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, double tolerance,
                                        int steps, int* steps_made) {
   const int J = lattice_.rows, K = lattice_.cols;
   const int fibers = rows ? J : K, links = rows ? K - 1 : J - 1;
@@ -143,29 +168,36 @@ double FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, d
                 : col_bands_[std::size_t(i) * std::size_t(K) + std::size_t(f)];
   };
   // Which fibers have a link outside its band by more than the tolerance:
-  // squared lengths, so a fiber already in its bands costs no square root;
-  // row-major order for both families (a column's links are K apart).
-  fiber_worst_.assign(std::size_t(fibers), 0.0);
-  const double inv_rest2 = 1.0 / (rest_m * rest_m);
-  for (int j = 0; j < (rows ? J : J - 1); ++j) {
+  // squared lengths against squared bounds (set up by project()), no square
+  // root and no branch, row-major order for both families (a column's links
+  // are K apart), so the loop vectorises.
+  fiber_flag_.assign(std::size_t(fibers), 0);
+  const std::vector<double>& low2 = rows ? row_low2_ : col_low2_;
+  const std::vector<double>& high2 = rows ? row_high2_ : col_high2_;
+  const int link_rows = rows ? J : J - 1, links_per_row = rows ? K - 1 : K;
+  for (int j = 0; j < link_rows; ++j) {
     const Vec3* here = positions_m.data() + lattice_.index(j, 0);
     const Vec3* next = rows ? here + 1 : here + K;
-    const LinkBand* band = rows ? row_bands_.data() + std::size_t(j) * std::size_t(K - 1)
-                                : col_bands_.data() + std::size_t(j) * std::size_t(K);
-    for (int k = 0; k < (rows ? K - 1 : K); ++k) {
-      const double relative2 = (next[k] - here[k]).squaredNorm() * inv_rest2;
-      const double low = band[k].lower - tolerance, high = band[k].upper + tolerance;
-      if (relative2 >= low * low && relative2 <= high * high) continue;
-      double& worst_of_fiber = fiber_worst_[std::size_t(rows ? j : k)];
-      worst_of_fiber = std::max(worst_of_fiber, outside(std::sqrt(relative2), band[k]));
+    const double* lo = low2.data() + std::size_t(j) * std::size_t(links_per_row);
+    const double* hi = high2.data() + std::size_t(j) * std::size_t(links_per_row);
+    if (rows) {
+      int outside_any = 0;
+      for (int k = 0; k < links_per_row; ++k) {
+        const double length2 = (next[k] - here[k]).squaredNorm();
+        outside_any |= int(length2 < lo[k]) | int(length2 > hi[k]);
+      }
+      fiber_flag_[std::size_t(j)] = std::uint8_t(outside_any);
+    } else {
+      std::uint8_t* flag = fiber_flag_.data();
+      for (int k = 0; k < links_per_row; ++k) {
+        const double length2 = (next[k] - here[k]).squaredNorm();
+        flag[k] |= std::uint8_t(int(length2 < lo[k]) | int(length2 > hi[k]));
+      }
     }
   }
-  double worst = 0.0;
   active_.clear();
-  for (int f = 0; f < fibers; ++f) {
-    worst = std::max(worst, fiber_worst_[std::size_t(f)]);
-    if (fiber_worst_[std::size_t(f)] > tolerance) active_.push_back(f);
-  }
+  for (int f = 0; f < fibers; ++f)
+    if (fiber_flag_[std::size_t(f)]) active_.push_back(f);
   // kLanes at a time; a short last group repeats its last fiber, written once.
   for (std::size_t g = 0; g < active_.size(); g += kLanes) {
     int lane_fiber[kLanes];
@@ -194,22 +226,36 @@ double FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, d
         positions_m[first_of(lane_fiber[l]) + std::size_t(i) * stride] = Vec3(x_[a], y_[a], z_[a]);
       }
   }
-  return worst;
+  return !active_.empty();
 }
 
 ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double tolerance,
                                           int max_rounds, int steps_per_fiber) {
   assert(positions_m.size() == lattice_.node_count());
   ProjectionReport report;
+  // The bounds of every link with the tolerance, squared, in m^2.
+  const auto squared_bounds = [tolerance](std::span<const LinkBand> bands, double rest_m,
+                                          std::vector<double>& low2, std::vector<double>& high2) {
+    low2.resize(bands.size());
+    high2.resize(bands.size());
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+      const double low = std::max(0.0, bands[i].lower - tolerance) * rest_m;
+      const double high = (bands[i].upper + tolerance) * rest_m;
+      low2[i] = low * low;
+      high2[i] = high * high;
+    }
+  };
+  squared_bounds(row_bands_, lattice_.spacing_x_m, row_low2_, row_high2_);
+  squared_bounds(col_bands_, lattice_.spacing_y_m, col_low2_, col_high2_);
   for (int round = 1; round <= max_rounds; ++round) {
     report.rounds = round;
-    const double worst =
-        std::max(project_family(true, positions_m, tolerance, steps_per_fiber, &report.fiber_steps),
-                 project_family(false, positions_m, tolerance, steps_per_fiber,
-                                &report.fiber_steps));
-    if (worst <= tolerance) {  // a whole round found nothing to move
+    omega_ = round == 1 ? 1.0 : kOverRelaxation;
+    const bool rows_moved =
+        project_family(true, positions_m, tolerance, steps_per_fiber, &report.fiber_steps);
+    const bool cols_moved =
+        project_family(false, positions_m, tolerance, steps_per_fiber, &report.fiber_steps);
+    if (!rows_moved && !cols_moved) {  // a whole round found nothing to move
       report.converged = true;
-      report.worst_excess = worst;
       return report;
     }
   }

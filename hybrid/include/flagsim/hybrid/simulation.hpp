@@ -13,7 +13,7 @@
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/infill/infill_method.hpp"
 
-namespace flagsim::app {
+namespace flagsim::hybrid {
 
 class Simulation {
  public:
@@ -44,4 +44,4 @@ class Simulation {
 /// The simulation of the scene's mode, at its frame 0.
 std::unique_ptr<Simulation> make_simulation(const Scene& scene);
 
-}  // namespace flagsim::app
+}  // namespace flagsim::hybrid

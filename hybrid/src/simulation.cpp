@@ -1,4 +1,4 @@
-#include "simulation.hpp"
+#include "flagsim/hybrid/simulation.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include "flagsim/infill/keyframes.hpp"
 #include "flagsim/infill/strain_limit.hpp"
 
-namespace flagsim::app {
+namespace flagsim::hybrid {
 namespace {
 
 // Root attributes describing the physics stepping, in every mode that has physics.
@@ -276,4 +276,4 @@ std::unique_ptr<Simulation> make_simulation(const Scene& scene) {
   return std::make_unique<FullLatticeSimulation>(scene);
 }
 
-}  // namespace flagsim::app
+}  // namespace flagsim::hybrid
