@@ -137,4 +137,39 @@ double wrinkle_wavelength_m(const Lattice& lattice, const Frames& frames, int fi
   return wavelengths[wavelengths.size() / 2];
 }
 
+double coarse_line_imprint(const Lattice& lattice, std::span<const Vec3> frame,
+                           std::span<const int> coarse_rows, std::span<const int> coarse_cols) {
+  const int J = lattice.rows, K = lattice.cols;
+  const auto turning = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 u = b - a, v = c - b;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  const auto median = [](std::vector<double>& v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    const double upper = v[v.size() / 2];
+    if (v.size() % 2) return upper;
+    return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2)));
+  };
+  std::vector<char> on_row(std::size_t(J), 0), on_col(std::size_t(K), 0);
+  for (int j : coarse_rows) on_row[std::size_t(j)] = 1;
+  for (int k : coarse_cols) on_col[std::size_t(k)] = 1;
+  std::vector<double> across_rows_on, across_rows_off, across_cols_on, across_cols_off;
+  for (int j = 0; j < J; ++j)
+    for (int k = 0; k < K; ++k) {
+      const Vec3& p = frame[lattice.index(j, k)];
+      if (j > 0 && j + 1 < J)  // the column fiber bending at (j, k)
+        (on_row[std::size_t(j)] ? across_rows_on : across_rows_off)
+            .push_back(turning(frame[lattice.index(j - 1, k)], p, frame[lattice.index(j + 1, k)]));
+      if (k > 0 && k + 1 < K)  // the row fiber bending at (j, k)
+        (on_col[std::size_t(k)] ? across_cols_on : across_cols_off)
+            .push_back(turning(frame[lattice.index(j, k - 1)], p, frame[lattice.index(j, k + 1)]));
+    }
+  const auto ratio = [&](std::vector<double>& on, std::vector<double>& off) {
+    if (on.empty() || off.empty()) return 1.0;
+    return median(on) / std::max(median(off), 1e-9);
+  };
+  return std::max(ratio(across_rows_on, across_rows_off), ratio(across_cols_on, across_cols_off));
+}
+
 }  // namespace flagsim::analysis

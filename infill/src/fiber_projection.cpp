@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 // Lanes (below) are passed by value only between inlined helpers of this
 // file, never across an ABI boundary.
@@ -247,6 +248,22 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
   };
   squared_bounds(row_bands_, lattice_.spacing_x_m, row_low2_, row_high2_);
   squared_bounds(col_bands_, lattice_.spacing_y_m, col_low2_, col_high2_);
+  // A link with both ends held cannot be moved: never out of bounds.
+  const int J = lattice_.rows, K = lattice_.cols;
+  for (int j = 0; j < J; ++j)
+    for (int k = 0; k < K; ++k) {
+      if (inverse_mass_[lattice_.index(j, k)] != 0.0) continue;
+      const std::size_t row_link = std::size_t(j) * std::size_t(K - 1) + std::size_t(k);
+      const std::size_t col_link = std::size_t(j) * std::size_t(K) + std::size_t(k);
+      if (k + 1 < K && inverse_mass_[lattice_.index(j, k + 1)] == 0.0) {
+        row_low2_[row_link] = 0.0;
+        row_high2_[row_link] = std::numeric_limits<double>::infinity();
+      }
+      if (j + 1 < J && inverse_mass_[lattice_.index(j + 1, k)] == 0.0) {
+        col_low2_[col_link] = 0.0;
+        col_high2_[col_link] = std::numeric_limits<double>::infinity();
+      }
+    }
   for (int round = 1; round <= max_rounds; ++round) {
     report.rounds = round;
     omega_ = round == 1 ? 1.0 : kOverRelaxation;

@@ -12,11 +12,43 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid)
       held_(fine.node_count(), 0),
       projection_(fine),
       coarse_row_stretch_(std::size_t(grid.coarse_rows) * std::size_t(grid.coarse_cols - 1)),
-      coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)) {}
+      coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)) {
+  if (grid.row_stride % 2 == 0 && grid.col_stride % 2 == 0 &&
+      std::min(grid.row_stride, grid.col_stride) / 2 >= kLevelStride) {
+    const Lattice half = Lattice::rectangle((fine.rows + 1) / 2, (fine.cols + 1) / 2,
+                                            fine.spacing_x_m * (fine.cols - 1),
+                                            fine.spacing_y_m * (fine.rows - 1), fine.origin_m);
+    coarser_ = std::make_unique<SmoothInfill>(
+        half, CellGrid{grid.coarse_rows, grid.coarse_cols, grid.row_stride / 2, grid.col_stride / 2});
+    coarser_positions_.resize(half.node_count());
+    coarser_surface_.resize(half.node_count());
+  }
+}
+
+void SmoothInfill::add_coarser_offsets(std::span<Vec3> positions_m) {
+  const Lattice& half = coarser_->lattice_;
+  const auto offset = [&](int j, int k) {
+    const std::size_t i = half.index(j, k);
+    return Vec3(coarser_positions_[i] - coarser_surface_[i]);
+  };
+  for (int j = 0; j < lattice_.rows; ++j)
+    for (int k = 0; k < lattice_.cols; ++k) {
+      const int j0 = j / 2, k0 = k / 2, j1 = (j + 1) / 2, k1 = (k + 1) / 2;
+      positions_m[lattice_.index(j, k)] +=
+          0.25 * (offset(j0, k0) + offset(j0, k1) + offset(j1, k0) + offset(j1, k1));
+    }
+}
 
 void SmoothInfill::hold(std::span<const std::uint8_t> nodes) {
   for (std::size_t i = 0; i < held_.size(); ++i) held_[i] = held_[i] || nodes[i];
   projection_.hold(held_);
+  if (coarser_) {
+    std::vector<std::uint8_t> half(coarser_->lattice_.node_count());
+    for (int j = 0; j < coarser_->lattice_.rows; ++j)
+      for (int k = 0; k < coarser_->lattice_.cols; ++k)
+        half[coarser_->lattice_.index(j, k)] = held_[lattice_.index(2 * j, 2 * k)];
+    coarser_->hold(half);
+  }
 }
 
 void SmoothInfill::register_stages(StageTimes& times) {
@@ -69,7 +101,15 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
 void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
                         StageTimes* times) {
   assert(coarse_m.size() == grid_.coarse_count() && positions_m.size() == lattice_.node_count());
-  run_timed(times, stage_[0], [&] { spline_.evaluate(coarse_m, positions_m); });  // 3.1-3.2
+  if (coarser_)  // part of 3.4: the coarser levels' projections start this one's
+    run_timed(times, stage_[2], [&] {
+      coarser_->fill(coarse_m, coarser_positions_, nullptr);
+      coarser_->spline_.evaluate(coarse_m, coarser_surface_);
+    });
+  run_timed(times, stage_[0], [&] {  // 3.1-3.2
+    spline_.evaluate(coarse_m, positions_m);
+    if (coarser_) add_coarser_offsets(positions_m);
+  });
   run_timed(times, stage_[1], [&] { set_bands(coarse_m); });                        // 3.3
   ProjectionReport projected;
   run_timed(times, stage_[2], [&] {  // 3.4

@@ -1,12 +1,13 @@
 #include "flagsim/infill/spline_surface.hpp"
 
+#include <algorithm>
 #include <cassert>
 
 #include <Eigen/LU>
 
 namespace flagsim::infill {
 
-Eigen::MatrixXd quintic_interpolation_matrix(int coarse_nodes, int dense_nodes) {
+Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
   assert(coarse_nodes >= 2 && (dense_nodes - 1) % (coarse_nodes - 1) == 0);
   const int n = dense_nodes, m = coarse_nodes, stride = (n - 1) / (m - 1);
   if (m == n) return Eigen::MatrixXd::Identity(n, n);
@@ -16,15 +17,13 @@ Eigen::MatrixXd quintic_interpolation_matrix(int coarse_nodes, int dense_nodes) 
     for (int o = 0; o < order; ++o) d = (d.bottomRows(d.rows() - 1) - d.topRows(d.rows() - 1)).eval();
     return d;
   };
-  const Eigen::MatrixXd d3 = differences(3), d2 = differences(2);
-  // Quadratics have no third difference; with two coarse nodes the family of
-  // interpolants is not unique. A vanishing second-difference term picks the
-  // straightest member (the line) without moving the quintic by more than
-  // kStraighten relative.
-  constexpr double kStraighten = 1e-9;
-  // KKT system of: minimise |D3 f|^2 + kStraighten |D2 f|^2 subject to f[i stride] = y_i.
+  // Polynomials of degree < order have no order-th difference: with fewer
+  // than kSplineOrder coarse nodes the order drops to their count, so the
+  // interpolant stays unique (two nodes: the line; three: the parabola).
+  const Eigen::MatrixXd d = differences(std::min(kSplineOrder, m));
+  // KKT system of: minimise |D f|^2 subject to f[i stride] = y_i.
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + m, n + m);
-  kkt.topLeftCorner(n, n) = 2.0 * (d3.transpose() * d3 + kStraighten * d2.transpose() * d2);
+  kkt.topLeftCorner(n, n) = 2.0 * d.transpose() * d;
   for (int i = 0; i < m; ++i) {
     kkt(i * stride, n + i) = 1.0;
     kkt(n + i, i * stride) = 1.0;
@@ -42,8 +41,8 @@ Eigen::MatrixXd quintic_interpolation_matrix(int coarse_nodes, int dense_nodes) 
 }
 
 SplineSurface::SplineSurface(const Lattice& fine, const CellGrid& grid)
-    : rows_(quintic_interpolation_matrix(grid.coarse_rows, fine.rows)),
-      cols_t_(quintic_interpolation_matrix(grid.coarse_cols, fine.cols).transpose()),
+    : rows_(spline_interpolation_matrix(grid.coarse_rows, fine.rows)),
+      cols_t_(spline_interpolation_matrix(grid.coarse_cols, fine.cols).transpose()),
       coarse_(grid.coarse_rows, grid.coarse_cols),
       half_(grid.coarse_rows, fine.cols),
       dense_(fine.rows, fine.cols) {}

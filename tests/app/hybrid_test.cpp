@@ -95,20 +95,6 @@ TEST(Hybrid, BulletBackendDrivesTheSameInfill) {
   for (double strain : reader.stat("max_strain")) EXPECT_LE(strain, 0.01);
 }
 
-TEST(Hybrid, DefaultSceneKeepsEveryFiberWithinOnePercent) {
-  // The default scene as shipped (129 x 193 dense, 9 x 13 coarse), its first
-  // 1.5 s: the fly end starts to whip about 0.5 s in.
-  TempDir dir;
-  const ProcessResult result =
-      run_flag_sim({"run", "--frames", "46", "--quiet", "-o", "d.h5"}, dir.path());
-  ASSERT_EQ(result.exit_code, 0) << result.err;
-  const data::OutputReader reader(dir.file("d.h5"));
-  ASSERT_EQ(reader.attribute("mode"), "hybrid");
-  const std::vector<double> strain = reader.stat("max_strain");
-  ASSERT_EQ(strain.size(), 46u);
-  for (std::size_t t = 0; t < strain.size(); ++t) EXPECT_LE(strain[t], 0.01) << "frame " << t;
-}
-
 TEST(Hybrid, NeedsACoarseLatticeThatDividesTheFineOne) {
   TempDir dir;
   dir.write("s.toml", "[scene]\nmode = \"hybrid\"\n[flag]\nsize = [1.5, 1.0]\nfine = [33, 49]\n");

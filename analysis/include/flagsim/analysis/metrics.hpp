@@ -19,7 +19,14 @@
 //    row's nodes from the straight line through its neighbours' mean (a
 //    second difference, which removes the flag's large-scale bend), their
 //    strongest spatial frequency along the row (periodogram, as above); the
-//    median over rows and frames of 1 / frequency, m.
+//    median over rows and frames of 1 / frequency, m;
+//  - coarse_line_imprint: how much more the cloth bends on the coarse
+//    lattice's lines than between them, in one frame: the median turning
+//    angle of the column fibers at interior nodes on coarse rows over the
+//    median at the other interior rows, the same for row fibers and coarse
+//    columns, the larger of the two. About 1 for a cloth that does not show
+//    its cells; a per-cell infill with creases on the coarse lines gives 7.
+//    (The same figure as ../shared/tools/cloth_checks.py imprint, per frame.)
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -47,5 +54,9 @@ struct StrainDistribution {
 StrainDistribution strain_distribution(const Lattice& lattice, const Frames& frames);
 
 double wrinkle_wavelength_m(const Lattice& lattice, const Frames& frames, int first_frame);
+
+/// @param coarse_rows, coarse_cols  dense index of each coarse row and column
+double coarse_line_imprint(const Lattice& lattice, std::span<const Vec3> frame,
+                           std::span<const int> coarse_rows, std::span<const int> coarse_cols);
 
 }  // namespace flagsim::analysis

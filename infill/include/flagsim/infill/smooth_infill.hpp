@@ -35,6 +35,7 @@
 // put them: their largest distance from the coarse nodes is reported every
 // frame (/stats/coarse_offset, m); /coarse/positions holds the physics' nodes.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -57,6 +58,9 @@ inline constexpr double kProjectionTolerance = 5e-4;
 /// Rows-then-columns rounds at most per frame: the default scene needs 2-3,
 /// a frame where the coarse cloth folds back on itself up to ~8.
 inline constexpr int kMaxProjectionRounds = 200;
+/// A coarser level is made while the cells of the halved lattice still have
+/// at least this many links a side.
+inline constexpr int kLevelStride = 4;
 /// Gauss-Newton steps per fiber per round (a fiber that converges stops early).
 inline constexpr int kStepsPerFiber = 4;
 
@@ -74,6 +78,9 @@ class SmoothInfill final : public InfillMethod {
  private:
   /// 3.3: every link's band from the coarse links it lies between.
   void set_bands(std::span<const Vec3> coarse_m);
+  /// The coarser level's offsets from its surface, interpolated (bilinear) to
+  /// this lattice and added to `positions_m` (this level's surface).
+  void add_coarser_offsets(std::span<Vec3> positions_m);
 
   Lattice lattice_;
   CellGrid grid_;
@@ -84,6 +91,12 @@ class SmoothInfill final : public InfillMethod {
 
   int stage_[3] = {-1, -1, -1};
   FillReport report_;
+
+  // The same infill on the lattice of every other dense row and column, when
+  // that still has at least kLevelStride links per cell side: its converged
+  // offsets from the surface start this level's projection.
+  std::unique_ptr<SmoothInfill> coarser_;
+  std::vector<Vec3> coarser_positions_, coarser_surface_;
 };
 
 }  // namespace flagsim::infill

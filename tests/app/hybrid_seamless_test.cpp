@@ -1,0 +1,144 @@
+// The hybrid's infill seen from its output frames (issue 12): no coarse-grid
+// imprint, fibers within 1% of their rest length, the coarse physics' own
+// stretch followed but never exceeded by more than 0.5%.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "flagsim/analysis/metrics.hpp"
+#include "flagsim/data/output_reader.hpp"
+#include "process.hpp"
+#include "temp_dir.hpp"
+
+namespace flagsim::test {
+namespace {
+
+// The imprint bounds: the median over frames is the figure the issue sets
+// (1.3); single frames where the 9 x 13 physics folds a coarse link by tens of
+// degrees go higher (measured worst: 1.48 on the default scene, 1.61 on the
+// wide flag below), so each frame is held to 1.7. A per-cell infill gives 7.
+constexpr double kMedianImprint = 1.3;
+constexpr double kFrameImprint = 1.7;
+
+// The lattice of a file, from its rest positions.
+Lattice lattice_of(const data::OutputReader& reader) {
+  const std::vector<Vec3> rest = reader.rest_positions();
+  Lattice lattice;
+  lattice.rows = reader.rows();
+  lattice.cols = reader.cols();
+  lattice.origin_m = rest[0];
+  lattice.spacing_x_m = (rest[1] - rest[0]).norm();
+  lattice.spacing_y_m = (rest[std::size_t(lattice.cols)] - rest[0]).norm();
+  return lattice;
+}
+
+struct ImprintStats {
+  double median = 0.0, worst = 0.0;
+};
+
+// Per frame from t >= 1 s (the flag is flat, hence featureless, before).
+ImprintStats imprint_of(const data::OutputReader& reader) {
+  const Lattice lattice = lattice_of(reader);
+  const std::vector<double> times = reader.times_s();
+  const std::vector<int> rows = reader.coarse_rows(), cols = reader.coarse_cols();
+  std::vector<double> ratios;
+  for (int t = 0; t < reader.frame_count(); ++t)
+    if (times[std::size_t(t)] >= 1.0 - 1e-9)
+      ratios.push_back(analysis::coarse_line_imprint(lattice, reader.positions(t), rows, cols));
+  EXPECT_FALSE(ratios.empty());
+  if (ratios.empty()) return {};
+  std::sort(ratios.begin(), ratios.end());
+  return {ratios[ratios.size() / 2], ratios.back()};
+}
+
+// Dense links of each cell against the coarse links beside them: no longer
+// than max(1%, the coarse stretch + 0.5%) (relative), every frame.
+void expect_stretch_follows_the_coarse(const data::OutputReader& reader) {
+  const Lattice lattice = lattice_of(reader);
+  const std::vector<int> rows = reader.coarse_rows(), cols = reader.coarse_cols();
+  const int jc_count = int(rows.size()), kc_count = int(cols.size());
+  const int rs = rows[1] - rows[0], cs = cols[1] - cols[0];
+  for (int t = 0; t < reader.frame_count(); ++t) {
+    const std::vector<Vec3> x = reader.positions(t), c = reader.coarse_positions(t);
+    const auto coarse_stretch = [&](int jc, int kc, int djc, int dkc, double rest) {
+      return (c[std::size_t((jc + djc) * kc_count + kc + dkc)] - c[std::size_t(jc * kc_count + kc)])
+                     .norm() / rest - 1.0;
+    };
+    double worst_excess = -1.0;
+    for (int j = 0; j < lattice.rows; ++j)
+      for (int k = 0; k < lattice.cols; ++k) {
+        const int jc = std::min(j / rs, jc_count - 2), kc = std::min(k / cs, kc_count - 2);
+        const Vec3& p = x[lattice.index(j, k)];
+        if (k + 1 < lattice.cols) {
+          const double allowed = std::max({0.01, coarse_stretch(jc, kc, 0, 1, cs * lattice.spacing_x_m),
+                                           coarse_stretch(jc + 1, kc, 0, 1, cs * lattice.spacing_x_m)});
+          worst_excess = std::max(worst_excess, (x[lattice.index(j, k + 1)] - p).norm() /
+                                                        lattice.spacing_x_m - 1.0 - allowed);
+        }
+        if (j + 1 < lattice.rows) {
+          const double allowed = std::max({0.01, coarse_stretch(jc, kc, 1, 0, rs * lattice.spacing_y_m),
+                                           coarse_stretch(jc, kc + 1, 1, 0, rs * lattice.spacing_y_m)});
+          worst_excess = std::max(worst_excess, (x[lattice.index(j + 1, k)] - p).norm() /
+                                                        lattice.spacing_y_m - 1.0 - allowed);
+        }
+      }
+    EXPECT_LE(worst_excess, 0.005) << "frame " << t;
+  }
+}
+
+TEST(HybridSeamless, DefaultSceneHasNoImprintAndKeepsEveryFiberWithinOnePercent) {
+  // The default scene as shipped, all 10 s: 129 x 193 dense from 9 x 13 coarse
+  // (cells of 16 links).
+  TempDir dir;
+  const ProcessResult result = run_flag_sim({"run", "--quiet", "-o", "d.h5"}, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.out.find("note: the infill did not reach"), std::string::npos) << result.out;
+  const data::OutputReader reader(dir.file("d.h5"));
+  ASSERT_EQ(reader.frame_count(), 301);
+  const std::vector<double> strain = reader.stat("max_strain");
+  for (std::size_t t = 0; t < strain.size(); ++t) EXPECT_LE(strain[t], 0.01) << "frame " << t;
+  const ImprintStats imprint = imprint_of(reader);
+  EXPECT_LE(imprint.median, kMedianImprint);
+  EXPECT_LE(imprint.worst, kFrameImprint);
+  expect_stretch_follows_the_coarse(reader);
+}
+
+struct Combination {
+  const char* name;
+  const char* fine;
+  const char* coarse;
+  const char* size;
+};
+
+class HybridShapes : public testing::TestWithParam<Combination> {};
+
+TEST_P(HybridShapes, HaveNoImprint) {
+  const Combination& c = GetParam();
+  TempDir dir;
+  const ProcessResult result = run_flag_sim(
+      {"run", "--quiet", "--frames", "91", "--set", std::string("flag.fine=") + c.fine, "--set",
+       std::string("flag.coarse=") + c.coarse, "--set", std::string("flag.size=") + c.size, "-o",
+       "s.h5"},
+      dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const data::OutputReader reader(dir.file("s.h5"));
+  for (double strain : reader.stat("max_strain")) EXPECT_LE(strain, 0.01);
+  const ImprintStats imprint = imprint_of(reader);
+  EXPECT_LE(imprint.median, kMedianImprint) << c.name;
+  EXPECT_LE(imprint.worst, kFrameImprint) << c.name;
+  expect_stretch_follows_the_coarse(reader);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cells, HybridShapes,
+    testing::Values(Combination{"cells_of_8", "[65,97]", "[9,13]", "[1.5,1.0]"},
+                    Combination{"taller_than_wide_cells_of_8", "[97,49]", "[13,7]", "[0.6,1.2]"},
+                    Combination{"wider_than_tall_cells_of_16", "[49,161]", "[4,11]", "[2.0,0.6]"}),
+    [](const testing::TestParamInfo<Combination>& param_info) {
+      return std::string(param_info.param.name);
+    });
+
+}  // namespace
+}  // namespace flagsim::test

@@ -1,0 +1,73 @@
+#include "flagsim/infill/spline_surface.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace flagsim::infill {
+namespace {
+
+TEST(SplineInterpolation, PassesThroughTheCoarseValuesAndReproducesCubics) {
+  const Eigen::MatrixXd m = spline_interpolation_matrix(5, 33);
+  ASSERT_EQ(m.rows(), 33);
+  ASSERT_EQ(m.cols(), 5);
+  Eigen::VectorXd coarse(5);
+  for (int i = 0; i < 5; ++i) coarse[i] = 0.3 - 1.2 * i + 0.7 * i * i - 0.2 * i * i * i;
+  const Eigen::VectorXd dense = m * coarse;
+  for (int n = 0; n < 33; ++n) {
+    const double u = n / 8.0;  // coarse index of dense node n
+    EXPECT_NEAR(dense[n], 0.3 - 1.2 * u + 0.7 * u * u - 0.2 * u * u * u, 1e-8) << n;
+  }
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(m(8 * i, i), 1.0);  // knots exact, not 1 - 1e-15
+}
+
+TEST(SplineInterpolation, FewNodesGiveTheirPolynomialAndEqualSizesTheIdentity) {
+  const Eigen::MatrixXd line = spline_interpolation_matrix(2, 9);
+  const Eigen::MatrixXd parabola = spline_interpolation_matrix(3, 9);
+  for (int n = 0; n < 9; ++n) {
+    EXPECT_NEAR(line(n, 0), 1.0 - n / 8.0, 1e-12) << n;
+    EXPECT_NEAR(line(n, 1), n / 8.0, 1e-12) << n;
+    const double u = n / 4.0;  // y = u^2 through (0, 0), (1, 1), (2, 4)
+    EXPECT_NEAR(parabola(n, 1) + 4 * parabola(n, 2), u * u, 1e-12) << n;
+  }
+  EXPECT_TRUE(spline_interpolation_matrix(7, 7).isIdentity());
+}
+
+TEST(SplineInterpolation, HasNoPreferenceForTheKnots) {
+  // Rough data (alternating signs: the hardest case for an interpolant): the
+  // largest second difference must not sit on the knots, as a cubic's does.
+  const int coarse = 9, dense = 129, stride = 16;
+  const Eigen::MatrixXd m = spline_interpolation_matrix(coarse, dense);
+  Eigen::VectorXd y(coarse);
+  for (int i = 0; i < coarse; ++i) y[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * i);
+  const Eigen::VectorXd f = m * y;
+  double on_knots = 0.0, elsewhere = 0.0;
+  for (int n = 1; n + 1 < dense; ++n) {
+    const double bend = std::abs(f[n - 1] - 2 * f[n] + f[n + 1]);
+    (n % stride == 0 ? on_knots : elsewhere) += bend;
+  }
+  const double knots = coarse - 2, others = dense - 2 - knots;
+  EXPECT_LT(on_knots / knots, 1.3 * elsewhere / others);
+}
+
+TEST(SplineSurface, IsTheTensorProductAndCarriesAPlaneExactly) {
+  const Lattice fine = Lattice::rectangle(17, 25, 1.5, 1.0, Vec3(0, 2, 0));
+  const CellGrid grid = CellGrid::of(fine, 5, 7);
+  SplineSurface surface(fine, grid);
+  // Coarse nodes of a tilted, stretched plane: the surface is that plane.
+  const auto plane = [](const Vec3& rest) {
+    return Vec3(0.9 * rest.x() + 0.1 * rest.y(), rest.y(), 0.3 * rest.x() - 0.2 * rest.y() + 1.0);
+  };
+  std::vector<Vec3> coarse(grid.coarse_count()), dense(fine.node_count());
+  for (int jc = 0; jc < 5; ++jc)
+    for (int kc = 0; kc < 7; ++kc)
+      coarse[grid.coarse_index(jc, kc)] = plane(fine.rest_position(4 * jc, 4 * kc));
+  surface.evaluate(coarse, dense);
+  for (int j = 0; j < 17; ++j)
+    for (int k = 0; k < 25; ++k)
+      EXPECT_LT((dense[fine.index(j, k)] - plane(fine.rest_position(j, k))).norm(), 1e-9);
+}
+
+}  // namespace
+}  // namespace flagsim::infill
