@@ -87,7 +87,8 @@ int main(int argc, char** argv) {
   add_measure_options(sweep_cmd, sweep.scene_path, sweep.frames, sweep.horizon_s, sweep.sets);
   sweep_cmd->add_option("--coarse", sweep.coarse, "Coarse lattices, e.g. 5x7,9x13,17x25");
   sweep_cmd->add_option("--substeps", sweep.substeps, "Minimum substeps per frame, e.g. 1,8");
-  sweep_cmd->add_option("--relax", sweep.relax, "Relaxation passes (3.4) cap, e.g. 100,8000");
+  sweep_cmd->add_option("--relax", sweep.relax, "The paper infill's 3.4 cap, e.g. 100,8000");
+  sweep_cmd->add_option("--infill", sweep.infill, "Infill solvers side by side: smooth,paper");
   sweep_cmd->add_option("-o,--output", sweep.output, "Sweep CSV");
   sweep_cmd->add_option("--plot", sweep.plot, "Error against ms per frame, PNG");
   sweep_cmd->add_option("--jobs", sweep.jobs, "Points run at a time (child processes)");

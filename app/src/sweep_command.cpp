@@ -66,6 +66,12 @@ int parse_count(const std::string& flag, const std::string& item) {
   return std::stoi(m[1]);
 }
 
+std::string parse_infill_solver(const std::string& flag, const std::string& item) {
+  if (item != "smooth" && item != "paper")
+    throw UserError(fmt::format("{} {}: expected infill solvers smooth and/or paper", flag, item));
+  return item;
+}
+
 // Point 0: the mass-spring reference; 1: Bullet on the full lattice; then the
 // hybrid grid, coarse lattice slowest, relaxation fastest.
 std::vector<SweepPoint> grid_of(const SweepOptions& o) {
@@ -77,21 +83,31 @@ std::vector<SweepPoint> grid_of(const SweepOptions& o) {
                                            : parse_list<int>("--substeps", o.substeps, parse_count);
   const auto relax =
       o.relax.empty() ? std::vector<int>{0} : parse_list<int>("--relax", o.relax, parse_count);
+  // Empty: the scene's own infill solver.
+  const auto infill =
+      o.infill.empty() ? std::vector<std::string>{""}
+                       : parse_list<std::string>("--infill", o.infill, parse_infill_solver);
   for (const auto& [jc, kc] : coarse)
     for (int s : substeps)
-      for (int r : relax) {
-        SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
-                     {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
-        if (s > 0) {
-          p.sets.push_back(fmt::format("solver.substeps={}", s));
-          p.label += fmt::format(" substeps {}", s);
+      for (const std::string& solver : infill)
+        // The relaxation cap is the paper solver's; the smooth one gets one point.
+        for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
+          SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
+                       {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
+          if (s > 0) {
+            p.sets.push_back(fmt::format("solver.substeps={}", s));
+            p.label += fmt::format(" substeps {}", s);
+          }
+          if (!solver.empty()) {
+            p.sets.push_back(fmt::format("infill.solver=\"{}\"", solver));
+            p.label += fmt::format(" {}", solver);
+          }
+          if (r > 0) {
+            p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
+            p.label += fmt::format(" relax {}", r);
+          }
+          points.push_back(p);
         }
-        if (r > 0) {
-          p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
-          p.label += fmt::format(" relax {}", r);
-        }
-        points.push_back(p);
-      }
   return points;
 }
 
