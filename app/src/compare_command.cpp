@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
 
@@ -54,6 +55,10 @@ int compare_command(const CompareOptions& options) {
   const Scene hybrid_scene = load_scene(options.scene_path, with_mode(sets, "hybrid"));
   const Scene reference_scene = load_scene(options.scene_path, with_mode(sets, options.reference));
   check_report_path(options.output);
+  FileRoles files;
+  files.input(options.scene_path, "the scene");
+  files.output(options.output, "the report");
+  files.check();
 
   const MetricWindow window{options.horizon_s};
   const RunRecord reference = record_run(reference_scene);

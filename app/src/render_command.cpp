@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/data/output_reader.hpp"
 #include "flagsim/render/camera.hpp"
@@ -144,6 +145,11 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
 }
 
 int render_command(const std::string& h5_path, const RenderRequest& request) {
+  FileRoles files;
+  files.input(h5_path, "the input");
+  if (request.texture) files.input(*request.texture, "--texture");
+  files.output(request.output, "-o");
+  files.check();
   // The file first: a missing or foreign input is the first thing to say.
   std::optional<Scene> scene;
   {

@@ -5,11 +5,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <tuple>
 
 #include "commands.hpp"
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/core/version.hpp"
@@ -33,7 +35,13 @@ std::vector<std::string> overrides_of(const RunOptions& options) {
 std::string output_path_of(const RunOptions& options, const Scene& scene) {
   if (!options.output_path.empty()) return options.output_path;
   if (!scene.output.file.empty()) return scene.output.file;
+  check_file_name_part(scene.name, fmt::format("scene.name \"{}\"", printable(scene.name)));
   return fmt::format("out/{}.h5", scene.name);
+}
+
+// The XDMF sidecar FrameWriter::finish writes beside `h5_path`.
+std::string sidecar_of(const std::string& h5_path) {
+  return std::filesystem::path(h5_path).replace_extension(".xdmf").string();
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -55,6 +63,18 @@ int run_command(const RunOptions& options) {
   } else if (options.render_size || options.render_style || options.render_texture) {
     throw UserError("--size, --style and --texture go with --render OUT.mp4|DIR");
   }
+
+  // Nothing the run writes may be a file it reads, or another file it writes.
+  const std::string output_path = output_path_of(options, scene);
+  FileRoles files;
+  files.input(options.scene_path, "the scene");
+  if (options.render_texture) files.input(*options.render_texture, "--texture");
+  if (scene.render) files.input(scene.render->texture, "render.texture");
+  files.output(output_path, "the output");
+  files.output(output_path + ".partial", "the output's .partial file");
+  files.output(sidecar_of(output_path), "the output's XDMF sidecar");
+  if (!options.render.empty()) files.output(options.render, "--render");
+  files.check();
 
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   StageTimes times;
@@ -84,7 +104,7 @@ int run_command(const RunOptions& options) {
   int unconverged_frames = 0;
   double worst_residual = 0.0;
   const Lattice& lattice = simulation->lattice();
-  data::FrameWriter writer(output_path_of(options, scene), lattice, info, scene.output.flush_every);
+  data::FrameWriter writer(output_path, lattice, info, scene.output.flush_every);
 
   InterruptGuard interrupt;
   Progress progress(!options.quiet && isatty(STDERR_FILENO), scene.simulated_frames());

@@ -16,7 +16,9 @@
 #include <regex>
 
 #include "commands.hpp"
+#include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
 
@@ -128,19 +130,18 @@ Scene scene_of(const SweepOptions& o, const SweepPoint& point) {
 }
 
 void check_plot_tools() {
-  const std::string probe = fmt::format("{} -c 'import matplotlib' >/dev/null 2>&1", kPython);
-  if (std::system(probe.c_str()) != 0)
+  if (run_quietly({kPython, "-c", "import matplotlib"}) != 0)
     throw UserError(fmt::format(
         "--plot needs {} with matplotlib (apt-get install python3-matplotlib)", kPython));
 }
 
 void plot(const std::string& csv, const std::string& png) {
-  const std::string command = fmt::format("{} - '{}' '{}'", kPython, csv, png);
-  FILE* python = popen(command.c_str(), "w");
-  if (!python) throw IoError(fmt::format("{}: cannot start {}", png, kPython));
+  // The paths are arguments of the script, never words of a shell command.
+  ChildProcess python({kPython, "-", csv, png}, true, false);
+  if (!python.valid()) throw IoError(fmt::format("{}: cannot start {}", png, kPython));
   const std::string_view script = sweep_plot_script();
-  std::fwrite(script.data(), 1, script.size(), python);
-  const int status = pclose(python);
+  std::fwrite(script.data(), 1, script.size(), python.input());
+  const int status = python.wait();
   if (status != 0)
     throw IoError(fmt::format("{}: the plot failed ({} exited with {})", png, kPython, status));
 }
@@ -242,6 +243,13 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     check_report_path(o.plot);
     check_plot_tools();
   }
+  FileRoles files;
+  files.input(o.scene_path, "the scene");
+  for (const std::string& file : o.merge) files.input(file, "--merge");
+  files.output(o.output, "the sweep CSV");
+  files.output(o.plot, "--plot");
+  if (!o.point && o.jobs > 1) files.output(o.output + ".points", "the points' directory");
+  files.check();
   std::vector<std::string> lines;
   if (!o.merge.empty()) {  // join the CSVs of points run separately
     std::map<int, std::string> by_point;

@@ -1,10 +1,14 @@
 #include "flagsim/data/frame_writer.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/statvfs.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -104,6 +108,16 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
     throw UserError(fmt::format("{}: is a directory; give an output file name such as {}/run.h5",
                                 path_, path_));
   const std::string partial = partial_path();
+  // A .partial left by a killed run is replaced; one that another run is
+  // writing (HDF5 holds an exclusive lock on a file it writes) is not touched.
+  if (const int fd = ::open(partial.c_str(), O_RDONLY | O_CLOEXEC); fd >= 0) {
+    const bool locked = ::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+    ::close(fd);
+    if (locked)
+      throw UserError(fmt::format(
+          "{}: being written by another run ({} is locked); wait for it or choose another -o",
+          path_, partial));
+  }
   fs::remove(partial, ec);
   h5::Handle create = h5::plist(H5Pcreate(H5P_FILE_CREATE));
   H5Pset_obj_track_times(create.get(), false);

@@ -1,26 +1,16 @@
 #include "flagsim/render/video_writer.hpp"
 
 #include <fmt/format.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <csignal>
 #include <cstdlib>
 #include <sstream>
 
+#include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
 
 namespace flagsim::render {
-namespace {
-
-// Single-quoted for /bin/sh.
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-}  // namespace
 
 std::string find_ffmpeg() {
   const char* path = std::getenv("PATH");
@@ -41,18 +31,20 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
         "{}: MP4 needs ffmpeg, which is not on PATH (apt-get install ffmpeg), or give -o a "
         "directory for PNG frames",
         path));
-  const std::string command = fmt::format(
-      "{} -loglevel error -y -f rawvideo -pix_fmt rgb24 -s {}x{} -r {} -i - -c:v libx264 "
-      "-preset veryfast -crf 20 -pix_fmt yuv420p -movflags +faststart {}",
-      shell_quote(ffmpeg), width, height, fps, shell_quote(path));
   std::signal(SIGPIPE, SIG_IGN);  // a dead ffmpeg is reported by fwrite, not by a signal
-  pipe_ = popen(command.c_str(), "w");
-  if (!pipe_) throw IoError(fmt::format("{}: cannot start ffmpeg", path));
+  // An argument vector, never a shell command: the path is one argument.
+  ffmpeg_ = std::make_unique<ChildProcess>(
+      std::vector<std::string>{ffmpeg, "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt",
+                               "rgb24", "-s", fmt::format("{}x{}", width, height), "-r",
+                               fmt::format("{}", fps), "-i", "-", "-c:v", "libx264", "-preset",
+                               "veryfast", "-crf", "20", "-pix_fmt", "yuv420p", "-movflags",
+                               "+faststart", path},
+      true, false);
+  if (!ffmpeg_->valid()) throw IoError(fmt::format("{}: cannot start ffmpeg", path));
+  pipe_ = ffmpeg_->input();
 }
 
-VideoWriter::~VideoWriter() {
-  if (pipe_) pclose(pipe_);
-}
+VideoWriter::~VideoWriter() = default;
 
 void VideoWriter::write(const Image& frame) {
   if (frame.width != width_ || frame.height != height_ ||
@@ -61,9 +53,9 @@ void VideoWriter::write(const Image& frame) {
 }
 
 void VideoWriter::finish() {
-  const int status = pclose(pipe_);
+  const int status = ffmpeg_->wait();
   pipe_ = nullptr;
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  if (status != 0)
     throw IoError(fmt::format("{}: ffmpeg failed to write the video", path_));
 }
 

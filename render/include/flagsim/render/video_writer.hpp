@@ -2,8 +2,10 @@
 // An H.264 MP4 made by piping raw RGB frames to ffmpeg (libx264, yuv420p, so
 // that common players open it).
 #include <cstdio>
+#include <memory>
 #include <string>
 
+#include "flagsim/core/child_process.hpp"
 #include "flagsim/render/image.hpp"
 
 namespace flagsim::render {
@@ -28,7 +30,8 @@ class VideoWriter {
  private:
   std::string path_;
   int width_, height_;
-  FILE* pipe_ = nullptr;
+  std::unique_ptr<ChildProcess> ffmpeg_;
+  FILE* pipe_ = nullptr;  ///< ffmpeg's standard input
 };
 
 }  // namespace flagsim::render

@@ -1,0 +1,63 @@
+#include "flagsim/core/child_process.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+extern char** environ;
+
+namespace flagsim {
+
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, bool pipe_input, bool quiet) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  int fds[2] = {-1, -1};
+  if (pipe_input && ::pipe2(fds, O_CLOEXEC) != 0) return;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (pipe_input) posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
+  else posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  }
+  pid_t pid = -1;
+  const int failed = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (pipe_input) ::close(fds[0]);
+  if (failed != 0) {
+    if (pipe_input) ::close(fds[1]);
+    return;
+  }
+  pid_ = pid;
+  if (pipe_input) input_ = ::fdopen(fds[1], "w");
+}
+
+ChildProcess::~ChildProcess() {
+  if (valid()) wait();
+}
+
+int ChildProcess::wait() {
+  if (input_) {
+    std::fclose(input_);
+    input_ = nullptr;
+  }
+  if (pid_ <= 0) return -1;
+  int status = 0;
+  pid_t done;
+  do done = ::waitpid(pid_, &status, 0);
+  while (done < 0 && errno == EINTR);
+  pid_ = -1;
+  return done > 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int run_quietly(const std::vector<std::string>& argv) {
+  ChildProcess child(argv, false, true);
+  return child.valid() ? child.wait() : -1;
+}
+
+}  // namespace flagsim

@@ -1,0 +1,152 @@
+// Nothing a user gave is ever lost (issue 13, data loss): no output is an
+// input of the same command however the path is spelt, a scene name cannot
+// place a file outside out/, a second writer of the same output is refused,
+// helper programs get their paths as arguments, never through a shell.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "process.hpp"
+#include "temp_dir.hpp"
+
+namespace flagsim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kTiny =
+    "[scene]\nname = \"tiny\"\nmode = \"hybrid\"\nduration = 0.1\n"
+    "[flag]\nsize = [1.5, 1.0]\nfine = [17, 25]\ncoarse = [9, 13]\n[gravity]\n";
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// One error line, exit 2.
+void expect_refused(const ProcessResult& r, const std::string& words, const std::string& what) {
+  EXPECT_EQ(r.exit_code, 2) << what << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << what << "\n" << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << "\n" << r.err;
+  EXPECT_NE(r.err.find(words), std::string::npos) << what << "\n" << r.err;
+  EXPECT_TRUE(r.out.empty()) << what;
+}
+
+TEST(DataSafety, NoOutputOverwritesTheSceneHoweverItIsSpelt) {
+  TempDir dir;
+  const std::string scene = dir.write("s.toml", kTiny);
+  fs::create_directory(dir.file("real"));
+  fs::copy_file(scene, dir.file("real/s.toml"));
+  fs::create_directory_symlink("real", dir.file("link"));
+  const std::vector<std::vector<std::string>> attempts = {
+      {"run", "s.toml", "-o", "s.toml"},
+      {"run", "s.toml", "-o", "./s.toml"},
+      {"run", "s.toml", "-o", scene},
+      {"run", "real/s.toml", "-o", "link/s.toml"},
+      {"run", "link/../s.toml", "-o", "s.toml"},
+      {"run", "s.toml", "--set", "output.file=\"s.toml\""},
+      {"run", "s.toml", "-o", "s.h5", "--render", "s.toml"},
+      {"compare", "s.toml", "-o", "./s.toml", "--frames", "2"},
+      {"sweep", "s.toml", "--coarse", "9x13", "-o", "s.toml"},
+      {"sweep", "s.toml", "--coarse", "9x13", "-o", "r.csv", "--plot", scene},
+  };
+  for (const auto& args : attempts) {
+    std::string what;
+    for (const std::string& a : args) what += a + " ";
+    const ProcessResult r = run_flag_sim(args, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << what << r.err;
+    EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << what << r.err;
+    EXPECT_EQ(read(scene), kTiny) << what;
+    EXPECT_EQ(read(dir.file("real/s.toml")), kTiny) << what;
+  }
+  EXPECT_EQ(dir.entry_count(), 3);  // s.toml, real/, link: nothing else made
+}
+
+TEST(DataSafety, NoOutputOverwritesAnOutputFileItReads) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  ASSERT_EQ(run_flag_sim({"run", "s.toml", "-o", "r.h5", "--quiet"}, dir.path()).exit_code, 0);
+  const std::string before = read(dir.file("r.h5"));
+  expect_refused(run_flag_sim({"render", "r.h5", "-o", "./r.h5"}, dir.path()), "would overwrite",
+                 "render onto its input");
+  expect_refused(run_flag_sim({"sweep", "--merge", "r.h5", "-o", "r.h5"}, dir.path()),
+                 "would overwrite", "merge onto its input");
+  EXPECT_EQ(read(dir.file("r.h5")), before);
+}
+
+TEST(DataSafety, AnOutputWhoseSidecarIsItselfIsRefused) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  expect_refused(run_flag_sim({"run", "s.toml", "-o", "run.xdmf"}, dir.path()), "same file",
+                 "-o run.xdmf");
+  EXPECT_EQ(dir.entry_count(), 1);
+}
+
+TEST(DataSafety, ASceneNameMustBeOneFileNameInsideOut) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  for (const char* name : {"\"../../escaped\"", "\"a/b\"", "\"ab\\u0000cd\"", "\"..\"", "\"\""}) {
+    const ProcessResult r =
+        run_flag_sim({"run", "s.toml", "--set", std::string("scene.name=") + name}, dir.path());
+    expect_refused(r, "cannot name an output file", name);
+  }
+  EXPECT_EQ(dir.entry_count(), 1);  // no out/, nothing above it
+  EXPECT_FALSE(fs::exists(fs::path(dir.path()).parent_path().parent_path() / "escaped.h5"));
+}
+
+TEST(DataSafety, ASecondWriterOfTheSameOutputIsRefusedAndTheFirstKeepsItsFrames) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  // The first run is long enough (257 x 385, 400 frames: seconds) to be caught writing.
+  ProcessResult first;
+  std::thread writer([&] {
+    first = run_flag_sim({"run", "s.toml", "-o", "c.h5", "--quiet", "--set", "flag.fine=[257,385]",
+                          "--frames", "400"},
+                         dir.path());
+  });
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!fs::exists(dir.file("c.h5.partial")) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // HDF5 has created and locked it
+  const ProcessResult second = run_flag_sim({"run", "s.toml", "-o", "c.h5", "--quiet"}, dir.path());
+  writer.join();
+  expect_refused(second, "being written by another run", "second writer");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("400 frames"), std::string::npos) << first.out;
+  EXPECT_TRUE(fs::exists(dir.file("c.h5")));
+  EXPECT_FALSE(fs::exists(dir.file("c.h5.partial")));
+}
+
+TEST(DataSafety, HelperProgramsGetPathsAsArgumentsNotThroughAShell) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  // Two real point CSVs (a reference and a hybrid: the plot needs an error
+  // above 0), then a merge whose output paths are shell syntax.
+  for (const char* point : {"0", "2"})
+    ASSERT_EQ(run_flag_sim({"sweep", "s.toml", "--coarse", "9x13", "--point", point, "-o",
+                            std::string("p") + point + ".csv", "--quiet"},
+                           dir.path())
+                  .exit_code,
+              0);
+  const std::string hostile = "x';touch INJECTED;'.csv";
+  const ProcessResult merged =
+      run_flag_sim({"sweep", "--merge", "p0.csv", "p2.csv", "-o", hostile, "--plot",
+                    "p'$(touch INJECTED2)'.png"},
+                   dir.path());
+  EXPECT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_TRUE(fs::exists(dir.file(hostile)));
+  EXPECT_TRUE(fs::exists(dir.file("p'$(touch INJECTED2)'.png")));
+  EXPECT_FALSE(fs::exists(dir.file("INJECTED")));
+  EXPECT_FALSE(fs::exists(dir.file("INJECTED2")));
+}
+
+}  // namespace
+}  // namespace flagsim::test
