@@ -54,11 +54,6 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
                   "hybrid mode needs flag.coarse = [Jc, Kc], the lattice the physics runs on");
   if (scene.pole && flag.pin == PinSet::kNone)
     fail_at(root, "pole", "a moving pole needs pinned nodes; set flag.pin (e.g. \"left\")");
-  if (scene.wrinkles && scene.mode != Mode::kMassSpring &&
-      infill_solver_of(scene) == InfillSolverKind::kSmooth)
-    fail_at(root, "wrinkles",
-            "step 3.5 (wrinkles) runs in the paper infill only for now; set infill.solver = "
-            "\"paper\" or remove [wrinkles]");
   if (scene.mode == Mode::kInfill) {
     if (scene.keyframes.empty())
       scene_in.fail("mode", "infill mode needs [[keyframe]] tables with the corner positions");

@@ -106,13 +106,14 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
     }
     if (!any) return;
     const Lanes moving = moves ? one : zero;
+    const Lanes damping = splat(kDamping);
     // (grad C) W (grad C)^T mu = -C is tridiagonal: diagonal w_i + w_{i+1},
     // off-diagonal A[i][i+1] = A[i+1][i] = -w_{i+1} (n_i . n_{i+1}). Thomas
     // algorithm, forward elimination: c' into c, d' into d. A link with both
     // ends held has nothing to solve for (diagonal 1, right-hand side 0).
     {
-      const Lanes diag = load(w) + load(w + L);
-      const auto both_held = diag == zero;
+      const Lanes diag = load(w) + load(w + L) + damping;
+      const auto both_held = diag == damping;
       store(inverse_pivot, one / (both_held ? one : diag));
       store(d, both_held ? zero : load(d) * moving * load(inverse_pivot));
     }
@@ -122,8 +123,8 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
                                           load(nz + a) * load(nz + b));
       const Lanes ca = upper * load(inverse_pivot + a);
       store(c + a, ca);
-      const Lanes diag = load(w + b) + load(w + b + L);
-      const auto both_held = diag == zero;
+      const Lanes diag = load(w + b) + load(w + b + L) + damping;
+      const auto both_held = diag == damping;
       const Lanes ib = one / ((both_held ? one : diag) - upper * ca);
       store(inverse_pivot + b, ib);
       store(d + b, both_held ? zero : (load(d + b) * moving - upper * load(d + a)) * ib);
@@ -134,9 +135,9 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
       store(d + a, load(d + a) - load(c + a) * load(d + a + L));
     }
     // dx_j = w_j (mu_{j-1} n_{j-1} - mu_j n_j); the ends have one link each.
-    for (int j = 0; j <= links; ++j) {
+    const auto correction = [&](int j, Lanes& fx, Lanes& fy, Lanes& fz) {
       const int a = j * L, p = a - L;
-      Lanes fx = zero, fy = zero, fz = zero;
+      fx = fy = fz = zero;
       if (j > 0) {
         const Lanes mu = load(d + p);
         fx += mu * load(nx + p);
@@ -149,10 +150,34 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
         fy -= mu * load(ny + a);
         fz -= mu * load(nz + a);
       }
-      const Lanes wj = load(w + a) * splat(omega_);
-      store(x + a, load(x + a) + wj * fx);
-      store(y + a, load(y + a) + wj * fy);
-      store(z + a, load(z + a) + wj * fz);
+      const Lanes wj = load(w + a);
+      fx *= wj;
+      fy *= wj;
+      fz *= wj;
+    };
+    // Trust region: no node moves more than kMaxStep of the fiber's length in a step.
+    // A fiber held at both ends and too short along a straight line has no
+    // solution along itself (the linearised system is singular there); the
+    // step is then bounded instead of unbounded.
+    Lanes largest2 = zero;
+    for (int j = 0; j <= links; ++j) {
+      Lanes fx, fy, fz;
+      correction(j, fx, fy, fz);
+      const Lanes step2 = fx * fx + fy * fy + fz * fz;
+      largest2 = step2 > largest2 ? step2 : largest2;
+    }
+    Lanes scale = splat(omega_);
+    for (int l = 0; l < L; ++l) {
+      const double largest = std::sqrt(largest2[l]), bound = kMaxStep * links * rest_m;
+      if (!(largest <= bound)) scale[l] *= largest > 0.0 && std::isfinite(largest) ? bound / largest : 0.0;
+    }
+    for (int j = 0; j <= links; ++j) {
+      Lanes fx, fy, fz;
+      correction(j, fx, fy, fz);
+      const int a = j * L;
+      store(x + a, load(x + a) + scale * fx);
+      store(y + a, load(y + a) + scale * fy);
+      store(z + a, load(z + a) + scale * fz);
     }
   }
 }

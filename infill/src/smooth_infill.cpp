@@ -2,24 +2,35 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <numbers>
 
 namespace flagsim::infill {
 
-SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid)
+SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
+                           std::optional<WrinkleParams> wrinkles)
     : lattice_(fine),
       grid_(grid),
       spline_(fine, grid),
       held_(fine.node_count(), 0),
       projection_(fine),
       coarse_row_stretch_(std::size_t(grid.coarse_rows) * std::size_t(grid.coarse_cols - 1)),
-      coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)) {
+      coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)),
+      wrinkles_(wrinkles) {
+  if (wrinkles_) {
+    surface_.resize(fine.node_count());
+    normals_.resize(fine.node_count());
+    last_offset_.assign(fine.node_count(), 0.0);
+    wave_.resize(std::size_t(std::max(fine.rows, fine.cols)));
+  }
   if (grid.row_stride % 2 == 0 && grid.col_stride % 2 == 0 &&
       std::min(grid.row_stride, grid.col_stride) / 2 >= kLevelStride) {
     const Lattice half = Lattice::rectangle((fine.rows + 1) / 2, (fine.cols + 1) / 2,
                                             fine.spacing_x_m * (fine.cols - 1),
                                             fine.spacing_y_m * (fine.rows - 1), fine.origin_m);
     coarser_ = std::make_unique<SmoothInfill>(
-        half, CellGrid{grid.coarse_rows, grid.coarse_cols, grid.row_stride / 2, grid.col_stride / 2});
+        half, CellGrid{grid.coarse_rows, grid.coarse_cols, grid.row_stride / 2, grid.col_stride / 2},
+        wrinkles);
     coarser_positions_.resize(half.node_count());
     coarser_surface_.resize(half.node_count());
   }
@@ -55,6 +66,48 @@ void SmoothInfill::register_stages(StageTimes& times) {
   stage_[0] = times.add("infill_3.1");  // with 3.2: one evaluation of the surface
   stage_[1] = times.add("infill_3.3");
   stage_[2] = times.add("infill_3.4");
+  if (wrinkles_) stage_[3] = times.add("infill_3.5");
+}
+
+void SmoothInfill::add_wrinkles(std::span<Vec3> positions_m) {
+  const int J = lattice_.rows, K = lattice_.cols;
+  // The surface's normal at every node, from its neighbours along both fibers.
+  for (int j = 0; j < J; ++j)
+    for (int k = 0; k < K; ++k) {
+      const Vec3 along_row = surface_[lattice_.index(j, std::min(k + 1, K - 1))] -
+                             surface_[lattice_.index(j, std::max(k - 1, 0))];
+      const Vec3 along_col = surface_[lattice_.index(std::min(j + 1, J - 1), k)] -
+                             surface_[lattice_.index(std::max(j - 1, 0), k)];
+      normals_[lattice_.index(j, k)] = along_row.cross(along_col).normalized();
+    }
+  std::vector<double> offset(lattice_.node_count(), 0.0);
+  const auto fiber_wave = [&](std::size_t first, std::size_t stride, int segments, double rest_m) {
+    double length = 0.0;  // c: the fiber along the surface
+    for (int i = 0; i < segments; ++i)
+      length += (surface_[first + std::size_t(i + 1) * stride] - surface_[first + std::size_t(i) * stride]).norm();
+    const double slack = segments * rest_m - length;  // dL of eq. (13)
+    if (slack <= 0.0 || wrinkles_->k_r4 <= 0.0) return;
+    const int half_waves = half_wave_count(length, slack, segments, *wrinkles_);
+    // y = A sin(m pi s / c) over the fiber, as long as the fiber's rest length.
+    const double amplitude = wave_amplitude_m(length, segments * rest_m, half_waves, segments);
+    double walked = 0.0, match = 0.0;
+    for (int i = 0; i <= segments; ++i) {
+      const std::size_t node = first + std::size_t(i) * stride;
+      if (i > 0) walked += (surface_[node] - surface_[node - stride]).norm();
+      wave_[std::size_t(i)] = amplitude * std::sin(half_waves * std::numbers::pi * walked / length);
+      match += wave_[std::size_t(i)] * last_offset_[node];
+    }
+    const double sign = match < 0.0 ? -1.0 : 1.0;  // the side it was on (property 2)
+    for (int i = 0; i <= segments; ++i)
+      offset[first + std::size_t(i) * stride] += sign * wave_[std::size_t(i)];
+  };
+  for (int j = 0; j < J; ++j) fiber_wave(lattice_.index(j, 0), 1, K - 1, lattice_.spacing_x_m);
+  for (int k = 0; k < K; ++k)
+    fiber_wave(lattice_.index(0, k), std::size_t(K), J - 1, lattice_.spacing_y_m);
+  // The re-lay: each node's offset along the normal becomes the waves'.
+  for (std::size_t i = 0; i < positions_m.size(); ++i)
+    if (!held_[i])
+      positions_m[i] += (offset[i] - (positions_m[i] - surface_[i]).dot(normals_[i])) * normals_[i];
 }
 
 void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
@@ -112,10 +165,20 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   });
   run_timed(times, stage_[1], [&] { set_bands(coarse_m); });                        // 3.3
   ProjectionReport projected;
-  run_timed(times, stage_[2], [&] {  // 3.4
+  const auto relax = [&] {  // 3.4
     projected = projection_.project(positions_m, kProjectionTolerance, kMaxProjectionRounds,
                                     kStepsPerFiber);
-  });
+  };
+  run_timed(times, stage_[2], relax);
+  if (wrinkles_) {
+    run_timed(times, stage_[3], [&] {
+      spline_.evaluate(coarse_m, surface_);
+      add_wrinkles(positions_m);
+    });
+    run_timed(times, stage_[2], relax);
+    for (std::size_t i = 0; i < positions_m.size(); ++i)
+      last_offset_[i] = (positions_m[i] - surface_[i]).dot(normals_[i]);
+  }
   report_.converged = projected.converged;
   report_.residual = projected.converged ? 0.0 : projected.worst_excess;
   report_.iterations = projected.rounds;

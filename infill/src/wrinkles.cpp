@@ -94,6 +94,20 @@ class Wave {
 
 }  // namespace
 
+double wave_amplitude_m(double chord_m, double length_m, int half_waves, int segments) {
+  if (length_m <= chord_m) return 0.0;
+  const Wave wave(chord_m, half_waves, 4 * segments);
+  return wave.amplitude_for(length_m, half_waves);
+}
+
+int half_wave_count(double chord_m, double slack_m, int segments, const WrinkleParams& params) {
+  const double m =
+      chord_m / std::numbers::pi * std::sqrt(params.k_prime * slack_m / (2.0 * params.k_r4));
+  // A half-wave needs 4 segments to be a wave and not a zigzag of the lattice.
+  const int finest = std::max(1, segments / 4);
+  return std::clamp(int(std::lround(m)), 1, finest);
+}
+
 bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3& normal,
                      const WrinkleParams& params) {
   if (fiber.segments < 2) return false;
@@ -116,11 +130,7 @@ bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3
       positions_m[fiber.node(i)] = start + (double(i) / fiber.segments) * chord_vec;
     return true;
   }
-  const double m =
-      chord / std::numbers::pi * std::sqrt(params.k_prime * slack / (2.0 * params.k_r4));
-  // A half-wave needs 4 segments to be a wave and not a zigzag of the lattice.
-  const int finest = std::max(1, fiber.segments / 4);
-  const int half_waves = std::clamp(int(std::lround(m)), 1, finest);
+  const int half_waves = half_wave_count(chord, slack, fiber.segments, params);
   const Wave wave(chord, half_waves, 4 * fiber.segments);
   const double amplitude = wave.amplitude_for(fiber.rest_length_m(), half_waves);
   // The sign that best matches the present shape keeps a wrinkle on its side.

@@ -89,3 +89,81 @@ TEST(SmoothInfill, FollowsTheCoarseStretchUpToTheCap) {
 
 }  // namespace
 }  // namespace flagsim::infill
+
+namespace flagsim::infill {
+namespace {
+
+// A cloth whose corners are pushed 3% together along its rows (the paper's
+// Figs. 9-10 case): the mean surface is the shrunk plane, every row has 3%
+// of slack, and 3.5 lays waves across the whole row.
+constexpr double kChord = 1.455;  // the rows' 1.5 m pushed 3% together
+
+struct Pushed {
+  Lattice fine = Lattice::rectangle(17, 193, 1.5, 0.5, Vec3::Zero());
+  CellGrid grid = CellGrid::of(fine, 2, 2);
+  std::vector<Vec3> corners = {Vec3(0, 0, 0), Vec3(kChord, 0, 0), Vec3(0, -0.5, 0),
+                               Vec3(kChord, -0.5, 0)};
+  std::vector<std::uint8_t> held() const {
+    std::vector<std::uint8_t> h(fine.node_count(), 0);
+    for (std::size_t c : fine.corners()) h[c] = 1;
+    return h;
+  }
+  // Half-waves along the middle row: sign changes of its offset from the plane, plus one.
+  int half_waves(const std::vector<Vec3>& x) const {
+    int changes = 0;
+    double last = 0.0;
+    for (int k = 1; k + 1 < fine.cols; ++k) {
+      const double z = x[fine.index(8, k)].z();
+      if (std::abs(z) < 1e-6) continue;
+      if (last != 0.0 && (z > 0) != (last > 0)) ++changes;
+      last = z;
+    }
+    return changes + 1;
+  }
+};
+
+TEST(SmoothInfillWrinkles, WavesSpanTheWholeFiberAndGrowAsTheFiberRadiusSquared) {
+  const Pushed p;
+  std::vector<double> radius, wavelength;
+  for (double r : {0.5e-3, 1e-3, 2e-3}) {
+    WrinkleParams params;
+    params.k_r4 = bending_constant_k_r4(1e9, r);
+    SmoothInfill infill(p.fine, p.grid, params);
+    infill.hold(p.held());
+    std::vector<Vec3> x = p.fine.rest_positions();
+    infill.fill(p.corners, x, nullptr);
+    ASSERT_TRUE(infill.last_report().converged) << r;
+    EXPECT_LE(link_strain(p.fine, x).max, kBand + kProjectionTolerance) << r;
+    const int m = p.half_waves(x);
+    // The count the balance picks for the row's slack on its surface.
+    EXPECT_EQ(m, half_wave_count(kChord, 1.5 - kChord, 192, params)) << r;
+    radius.push_back(std::log(r));
+    wavelength.push_back(std::log(2.0 * kChord / m));
+  }
+  // Least-squares slope of log wavelength against log r: 2 +- 0.5 (m is rounded).
+  const double mr = (radius[0] + radius[1] + radius[2]) / 3, mw = (wavelength[0] + wavelength[1] + wavelength[2]) / 3;
+  double sxy = 0, sxx = 0;
+  for (int i = 0; i < 3; ++i) {
+    sxy += (radius[i] - mr) * (wavelength[i] - mw);
+    sxx += (radius[i] - mr) * (radius[i] - mr);
+  }
+  EXPECT_NEAR(sxy / sxx, 2.0, 0.5);
+}
+
+TEST(SmoothInfillWrinkles, AWrinkleStaysWhereItIsWhileTheCornersAreHeld) {
+  const Pushed p;
+  WrinkleParams params;
+  params.k_r4 = bending_constant_k_r4(1e9, 1e-3);
+  SmoothInfill infill(p.fine, p.grid, params);
+  infill.hold(p.held());
+  std::vector<Vec3> x = p.fine.rest_positions();
+  infill.fill(p.corners, x, nullptr);
+  const std::vector<Vec3> formed = x;
+  for (int frame = 0; frame < 20; ++frame) infill.fill(p.corners, x, nullptr);
+  double moved = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (x[i] - formed[i]).norm());
+  EXPECT_LT(moved, 1e-3);  // 1 mm over 20 held frames
+}
+
+}  // namespace
+}  // namespace flagsim::infill

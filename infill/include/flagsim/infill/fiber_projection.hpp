@@ -60,6 +60,14 @@ struct ProjectionReport {
 /// stays plain: it takes the surface's large errors, where overshooting hurts.
 inline constexpr double kOverRelaxation = 1.4;
 
+/// Levenberg-Marquardt damping added to the tridiagonal system's diagonal
+/// (whose entries are 1 or 2): keeps it regular where a straight fiber held
+/// at both ends makes it singular, and moves a converging step by ~1e-9.
+inline constexpr double kDamping = 1e-9;
+/// Largest motion of a node in one Gauss-Newton step, as a fraction of the
+/// fiber's rest length (a fiber 10% too long moves its free end by 10%).
+inline constexpr double kMaxStep = 0.1;
+
 /// Fibers solved side by side.
 inline constexpr int kLanes = 4;
 

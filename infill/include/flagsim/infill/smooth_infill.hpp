@@ -24,8 +24,20 @@
 //      it lies along; no slack is invented.
 //  3.4 relaxation: whole-fiber Gauss-Newton projection (fiber_projection.hpp)
 //      until every link is within its band; only pinned nodes are held.
-//  3.5 (with [wrinkles]) is the paper solver's; this solver refuses it for now
-//      (see make_infill).
+//  3.5 (with [wrinkles]) re-move by the bending feature, on whole fibers:
+//      each row and column's slack on the mean surface, dL = L - c with c the
+//      fiber's length along the surface (the paper's chord |P_j1 - P_jK| of
+//      eq. (12), read on the surface the wrinkles ride on), picks its wave
+//      count by the balance E = e of eqs. (1), (11)-(13) (half_wave_count in
+//      wrinkles.hpp: m half-waves over the whole fiber, so a wave spans as many
+//      cells as the fiber's thickness asks), and the wave y = A sin(m pi s / c)
+//      with the amplitude that gives the fiber back its rest length is laid
+//      along the surface's normal; rows' and columns' waves add, and their sum
+//      replaces each node's offset along the normal (a re-lay, as in the paper
+//      solver: the same coarse nodes give the same waves). Each fiber
+//      keeps the side its wave was on the frame before (the sign that best
+//      matches the last frame's offsets from its surface: property 2). Then
+//      3.4 again.
 //
 // Choice (issue 12, requirement 1): the dense lattice follows the coarse
 // nodes as its mean surface, not through them exactly. Holding each coarse
@@ -36,12 +48,14 @@
 // frame (/stats/coarse_offset, m); /coarse/positions holds the physics' nodes.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "flagsim/infill/fiber_projection.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/spline_surface.hpp"
+#include "flagsim/infill/wrinkles.hpp"
 
 namespace flagsim::infill {
 
@@ -66,7 +80,9 @@ inline constexpr int kStepsPerFiber = 4;
 
 class SmoothInfill final : public InfillMethod {
  public:
-  SmoothInfill(const Lattice& fine, const CellGrid& grid);
+  /// @param wrinkles  step 3.5, or nullopt to leave it out (no [wrinkles] table)
+  SmoothInfill(const Lattice& fine, const CellGrid& grid,
+               std::optional<WrinkleParams> wrinkles = std::nullopt);
 
   void hold(std::span<const std::uint8_t> nodes) override;
   void register_stages(StageTimes& times) override;
@@ -78,6 +94,8 @@ class SmoothInfill final : public InfillMethod {
  private:
   /// 3.3: every link's band from the coarse links it lies between.
   void set_bands(std::span<const Vec3> coarse_m);
+  /// 3.5: each node's offset along the surface's normal set to the whole fibers' waves.
+  void add_wrinkles(std::span<Vec3> positions_m);
   /// The coarser level's offsets from its surface, interpolated (bilinear) to
   /// this lattice and added to `positions_m` (this level's surface).
   void add_coarser_offsets(std::span<Vec3> positions_m);
@@ -89,7 +107,11 @@ class SmoothInfill final : public InfillMethod {
   FiberProjection projection_;
   std::vector<double> coarse_row_stretch_, coarse_col_stretch_;
 
-  int stage_[3] = {-1, -1, -1};
+  int stage_[4] = {-1, -1, -1, -1};
+  std::optional<WrinkleParams> wrinkles_;
+  std::vector<Vec3> surface_, normals_;  ///< 3.5: this frame's mean surface and its normals
+  std::vector<double> last_offset_;      ///< 3.5: last frame's offset along its normal, m
+  std::vector<double> wave_;             ///< 3.5: one fiber's wave, work buffer
   FillReport report_;
 
   // The same infill on the lattice of every other dense row and column, when

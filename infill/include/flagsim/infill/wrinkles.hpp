@@ -57,6 +57,16 @@ double fiber_bending_energy(const Fiber& fiber, std::span<const Vec3> positions_
 /// eq. (13): e = k_prime h (c - L)^2.
 double fiber_target_energy(const Fiber& fiber, std::span<const Vec3> positions_m, double k_prime);
 
+/// The wave count E = e picks (see above) for a fiber of chord `chord_m` and
+/// slack `slack_m` (both m) over `segments` links: m = round((c/pi)
+/// sqrt(k_prime dL / (2 k r^4))), at least 1, at most segments / 4.
+int half_wave_count(double chord_m, double slack_m, int segments, const WrinkleParams& params);
+
+/// The amplitude A (m) of y = A sin(m pi x / c), x in [0, c], whose length is
+/// `length_m` (exactly, on a polyline of 4 `segments` pieces; 0 when it is no
+/// longer than the chord): the small-slope estimate is too short at large slopes.
+double wave_amplitude_m(double chord_m, double length_m, int half_waves, int segments);
+
 /// Step 3.5 on one fiber, `normal` the cloth's normal there (any length, not
 /// along the chord). Returns true if the fiber was re-laid.
 bool rewrinkle_fiber(const Fiber& fiber, std::span<Vec3> positions_m, const Vec3& normal,
