@@ -182,6 +182,7 @@ int run_command(const RunOptions& options) {
   fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
              status, writer.frames_written(), lattice.rows, lattice.cols, to_string(scene.mode),
              ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
+  if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   if (unconverged_frames > 0)
     fmt::print("note: the infill did not reach its tolerance in {} of {} frames (worst link {:.3f}% "
                "beyond it; /stats/infill_converged)\n",

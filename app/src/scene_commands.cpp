@@ -23,6 +23,7 @@ int validate_command(const std::string& scene_path) {
              scene_path, scene.name, to_string(scene.mode), scene.flag.fine_rows,
              scene.flag.fine_cols, scene.simulated_frames(), scene.fps,
              fmt::join(simulation->effects(), ","), stepping);
+  if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   return int(ExitCode::kSuccess);
 }
 

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
@@ -269,6 +272,25 @@ class HybridSimulation final : public Simulation {
 };
 
 }  // namespace
+
+std::optional<std::string> wrinkle_resolution_note(const Scene& scene) {
+  const std::optional<infill::WrinkleParams> params = wrinkle_params(scene);
+  if (!params || params->k_prime <= 0.0) return std::nullopt;
+  // Eq. (13)'s balance for a row of chord c with slack dL = 0.01 c:
+  // (m pi / c)^2 = k_prime dL / (2 k r^4), wavelength 2 c / m.
+  const double chord_m = scene.flag.width_m, slack_m = 0.01 * chord_m;
+  const double wavelength_m =
+      2.0 * std::numbers::pi * std::sqrt(2.0 * params->k_r4 / (params->k_prime * slack_m));
+  const Lattice lattice = scene.fine_lattice();
+  const double finest_m = 8.0 * lattice.spacing_x_m;
+  if (wavelength_m >= finest_m) return std::nullopt;
+  const int columns = int(std::ceil(8.0 * chord_m / wavelength_m)) + 1;
+  return fmt::format(
+      "note: [wrinkles] asks for waves of {:.3g} m (at 1% slack), finer than the {} x {} "
+      "lattice carries ({:.3g} m, 8 spacings): 3.5 will lay broader ones; a lattice of {} or more "
+      "columns would carry them",
+      wavelength_m, lattice.rows, lattice.cols, finest_m, columns);
+}
 
 std::unique_ptr<Simulation> make_simulation(const Scene& scene) {
   if (scene.mode == Mode::kInfill) return std::make_unique<InfillSimulation>(scene);

@@ -180,3 +180,31 @@ TEST(Bullet, FullLatticeModeRunsAndRecordsItsStepping) {
 
 }  // namespace
 }  // namespace flagsim::test
+
+namespace flagsim::test {
+namespace {
+
+TEST(Hybrid, SaysWhenTheWrinklesAskedForAreFinerThanTheLattice) {
+  TempDir dir;
+  const std::string base =
+      "[scene]\nmode = \"hybrid\"\n[flag]\nsize = [1.5, 1.0]\nfine = [33, 49]\ncoarse = [9, 13]\n"
+      "[wrinkles]\nfiber_modulus = 1e9\n";
+  dir.write("thin.toml", base + "fiber_radius = 0.0002\n");
+  dir.write("thick.toml", base + "fiber_radius = 0.002\n");
+  const ProcessResult thin = run_flag_sim({"validate", "thin.toml"}, dir.path());
+  ASSERT_EQ(thin.exit_code, 0) << thin.err;
+  const std::size_t note = thin.out.find("note: [wrinkles] asks for waves of 0.0575 m");
+  EXPECT_NE(note, std::string::npos) << thin.out;
+  EXPECT_NE(thin.out.find("a lattice of 210 or more columns would carry them"), std::string::npos);
+  EXPECT_EQ(thin.out.find("note:", note + 1), std::string::npos);  // one line
+  const ProcessResult thick = run_flag_sim({"validate", "thick.toml"}, dir.path());
+  ASSERT_EQ(thick.exit_code, 0) << thick.err;
+  EXPECT_EQ(thick.out.find("note:"), std::string::npos) << thick.out;
+  const ProcessResult run =
+      run_flag_sim({"run", "thin.toml", "--frames", "2", "--quiet", "-o", "t.h5"}, dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("note: [wrinkles] asks for waves"), std::string::npos) << run.out;
+}
+
+}  // namespace
+}  // namespace flagsim::test

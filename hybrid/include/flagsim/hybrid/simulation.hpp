@@ -41,6 +41,12 @@ class Simulation {
   virtual std::string stepping_summary() const = 0;
 };
 
+/// A `note:` line when the scene's [wrinkles] ask for waves finer than its
+/// lattice carries: the wavelength step 3.5's balance picks for a row with 1%
+/// of slack, against 8 rest spacings (a half-wave needs 4 links, else it is a
+/// zigzag of the lattice and 3.5 clamps the wave count); nullopt otherwise.
+std::optional<std::string> wrinkle_resolution_note(const Scene& scene);
+
 /// The simulation of the scene's mode, at its frame 0.
 std::unique_ptr<Simulation> make_simulation(const Scene& scene);
 
