@@ -26,7 +26,8 @@ FiberProjection::FiberProjection(const Lattice& fine)
       col_bands_(std::size_t(fine.rows - 1) * std::size_t(fine.cols)) {
   const std::size_t lanes = std::size_t(std::max(fine.rows, fine.cols)) * kLanes;
   for (std::vector<double>* buffer :
-       {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_, &diag_, &off_, &rhs_})
+       {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_, &diag_, &off_, &rhs_, &dx_,
+        &dy_, &dz_})
     buffer->resize(lanes);
   set_uniform_band(0.0);
 }
@@ -71,6 +72,9 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
   double* const inverse_pivot = diag_.data();
   double* const c = off_.data();
   double* const d = rhs_.data();
+  double* const step_x = dx_.data();
+  double* const step_y = dy_.data();
+  double* const step_z = dz_.data();
   for (int step = 0; step < steps; ++step) {
     // Constraint values C_i = |x_{i+1} - x_i| - clamp(|.|, lower S, upper S)
     // (d = -C), link directions n_i, and each lane's worst excess.
@@ -135,9 +139,14 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
       store(d + a, load(d + a) - load(c + a) * load(d + a + L));
     }
     // dx_j = w_j (mu_{j-1} n_{j-1} - mu_j n_j); the ends have one link each.
-    const auto correction = [&](int j, Lanes& fx, Lanes& fy, Lanes& fz) {
+    // Trust region: no node moves more than kMaxStep of the fiber's length in
+    // a step. A fiber held at both ends and too short along a straight line
+    // has no solution along itself (the linearised system is singular there);
+    // the step is then bounded instead of unbounded.
+    Lanes largest2 = zero;
+    for (int j = 0; j <= links; ++j) {
       const int a = j * L, p = a - L;
-      fx = fy = fz = zero;
+      Lanes fx = zero, fy = zero, fz = zero;
       if (j > 0) {
         const Lanes mu = load(d + p);
         fx += mu * load(nx + p);
@@ -154,30 +163,22 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
       fx *= wj;
       fy *= wj;
       fz *= wj;
-    };
-    // Trust region: no node moves more than kMaxStep of the fiber's length in a step.
-    // A fiber held at both ends and too short along a straight line has no
-    // solution along itself (the linearised system is singular there); the
-    // step is then bounded instead of unbounded.
-    Lanes largest2 = zero;
-    for (int j = 0; j <= links; ++j) {
-      Lanes fx, fy, fz;
-      correction(j, fx, fy, fz);
+      store(step_x + a, fx);
+      store(step_y + a, fy);
+      store(step_z + a, fz);
       const Lanes step2 = fx * fx + fy * fy + fz * fz;
       largest2 = step2 > largest2 ? step2 : largest2;
     }
     Lanes scale = splat(omega_);
-    for (int l = 0; l < L; ++l) {
-      const double largest = std::sqrt(largest2[l]), bound = kMaxStep * links * rest_m;
-      if (!(largest <= bound)) scale[l] *= largest > 0.0 && std::isfinite(largest) ? bound / largest : 0.0;
-    }
+    const double limit = kMaxStep * links * rest_m;
+    for (int l = 0; l < L; ++l)
+      if (!(largest2[l] <= limit * limit))
+        scale[l] *= std::isfinite(largest2[l]) ? limit / std::sqrt(largest2[l]) : 0.0;
     for (int j = 0; j <= links; ++j) {
-      Lanes fx, fy, fz;
-      correction(j, fx, fy, fz);
       const int a = j * L;
-      store(x + a, load(x + a) + scale * fx);
-      store(y + a, load(y + a) + scale * fy);
-      store(z + a, load(z + a) + scale * fz);
+      store(x + a, load(x + a) + scale * load(step_x + a));
+      store(y + a, load(y + a) + scale * load(step_y + a));
+      store(z + a, load(z + a) + scale * load(step_z + a));
     }
   }
 }
