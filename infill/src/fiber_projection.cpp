@@ -169,7 +169,7 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
       const Lanes step2 = fx * fx + fy * fy + fz * fz;
       largest2 = step2 > largest2 ? step2 : largest2;
     }
-    Lanes scale = splat(omega_);
+    Lanes scale = one;
     const double limit = kMaxStep * links * rest_m;
     for (int l = 0; l < L; ++l)
       if (!(largest2[l] <= limit * limit))
@@ -292,7 +292,6 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
     }
   for (int round = 1; round <= max_rounds; ++round) {
     report.rounds = round;
-    omega_ = round == 1 ? 1.0 : kOverRelaxation;
     const bool rows_moved =
         project_family(true, positions_m, tolerance, steps_per_fiber, &report.fiber_steps);
     const bool cols_moved =
