@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -102,9 +103,23 @@ std::vector<std::string> csv_rows(const std::string& path) {
   std::string line;
   if (!std::getline(in, line) || line != csv_header())
     throw UserError(fmt::format("{}: not a flag-sim sweep or compare CSV (header differs)", path));
+  // Every row as this module writes it: the header's number of fields, the
+  // first a point number (digits only), so that merging can trust them.
+  const auto fields = [](const std::string& text) {
+    return std::count(text.begin(), text.end(), ',') + 1;
+  };
+  const auto header_fields = fields(csv_header());
   std::vector<std::string> rows;
-  while (std::getline(in, line))
-    if (!line.empty()) rows.push_back(line);
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    const std::string point = line.substr(0, line.find(','));
+    if (fields(line) != header_fields || point.empty() || point.size() > 9 ||
+        !std::all_of(point.begin(), point.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      throw UserError(fmt::format("{}:{}: not a row of a flag-sim sweep CSV ({} fields, the first a "
+                                  "point number, expected)",
+                                  path, number, header_fields));
+    rows.push_back(line);
+  }
   return rows;
 }
 

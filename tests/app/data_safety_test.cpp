@@ -150,3 +150,27 @@ TEST(DataSafety, HelperProgramsGetPathsAsArgumentsNotThroughAShell) {
 
 }  // namespace
 }  // namespace flagsim::test
+
+namespace flagsim::test {
+namespace {
+
+TEST(DataSafety, MergeRowsThatAreNotSweepRowsAreOneErrorLine) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  ASSERT_EQ(run_flag_sim({"sweep", "s.toml", "--coarse", "9x13", "--point", "0", "-o", "p0.csv",
+                          "--quiet"},
+                         dir.path())
+                .exit_code,
+            0);
+  const std::string good = read(dir.file("p0.csv"));
+  const std::string header = good.substr(0, good.find('\n') + 1);
+  for (const char* row : {"abc,def", "99999999999,x", "-5,x", "7", " 3 ,x"}) {
+    dir.write("bad.csv", header + row + "\n");
+    const ProcessResult r = run_flag_sim({"sweep", "--merge", "bad.csv", "-o", "m.csv"}, dir.path());
+    expect_refused(r, "bad.csv:2: not a row of a flag-sim sweep CSV", row);
+    EXPECT_FALSE(fs::exists(dir.file("m.csv"))) << row;
+  }
+}
+
+}  // namespace
+}  // namespace flagsim::test
