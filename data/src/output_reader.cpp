@@ -146,6 +146,13 @@ std::vector<std::vector<double>> OutputReader::stage_seconds() const {
   const std::vector<double> flat = read_all(impl_->file.get(), "/stats/stage_seconds", &dims);
   std::vector<std::vector<double>> rows;
   if (dims.size() != 2 || dims[1] == 0) return rows;
+  // Each column is the stage its `stages` attribute names: a file where the
+  // two disagree was not written by flag-sim, and reading on would go past a row.
+  if (const std::size_t names = stage_names().size(); names != dims[1])
+    throw UserError(fmt::format(
+        "{}: /stats/stage_seconds has {} columns but its attribute `stages` names {}: not an "
+        "output flag-sim wrote",
+        path_, dims[1], names));
   for (hsize_t t = 0; t < dims[0]; ++t)
     rows.emplace_back(flat.begin() + long(t * dims[1]), flat.begin() + long((t + 1) * dims[1]));
   return rows;

@@ -2,6 +2,7 @@
 """The output file as h5py (Debian's /usr/bin/python3) sees it: every contract
 path with its dtype and shape, the attributes, and a foreign HDF5 file refused."""
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -72,6 +73,17 @@ with tempfile.TemporaryDirectory() as tmp:
         check(np.allclose(f["frames/positions"][:, :, 0], rest[None, :, 0], atol=1e-6),
               "pole edge pinned at rest")
     check(os.path.exists(os.path.join(tmp, "run.xdmf")), "xdmf sidecar")
+
+    # A file whose stage names outnumber its stage columns: one error line, exit 2.
+    lying = os.path.join(tmp, "lying.h5")
+    shutil.copy(os.path.join(tmp, "run.h5"), lying)
+    with h5py.File(lying, "r+") as f:
+        names = list(f["stats/stage_seconds"].attrs["stages"]) + ["extra_1", "extra_2"]
+        f["stats/stage_seconds"].attrs["stages"] = names
+    info = subprocess.run([flag_sim, "info", lying], capture_output=True, text=True)
+    check(info.returncode == 2, f"lying stages exit {info.returncode}")
+    check(info.stderr.startswith("error: ") and info.stderr.count("\n") == 1
+          and "names 11" in info.stderr, f"lying stages message: {info.stderr}")
 
     foreign = os.path.join(tmp, "foreign.h5")
     with h5py.File(foreign, "w") as f:
