@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
 #include "scene_checks.hpp"
 #include "toml_reader.hpp"
 
@@ -93,6 +94,52 @@ void merge_into(toml::table& target, const toml::table& patch) {
 
 // --set KEY=VALUE: VALUE is TOML; a bare word (mass-spring) is taken as a string.
 // Returns the dotted key, for error messages.
+// toml++ parses nested tables, dotted keys and arrays by recursion: 50,000
+// levels overflow the stack. No scene needs more than a handful; anything past
+// kMaxNesting is refused before toml++ sees it. Counted outside strings and
+// comments: the depth of [ and { in values, and the parts of a key (dots
+// before a key's '=' or inside a [table] header).
+constexpr int kMaxNesting = 64;
+
+void check_nesting(std::string_view text, std::string_view source) {
+  int depth = 0, line = 1, key_parts = 1;
+  bool in_key = true;  // at the start of a line, before its '='
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      key_parts = 1;
+      in_key = depth == 0;
+      continue;
+    }
+    if (c == '#') {  // a comment runs to the end of the line
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+      continue;
+    }
+    if (c == '"' || c == '\'') {  // a string: skip it (escapes in basic strings)
+      const bool multi = text.substr(i, 3) == std::string(3, c);
+      const std::string_view close = multi ? std::string_view(c == '"' ? "\"\"\"" : "'''")
+                                           : std::string_view(c == '"' ? "\"" : "'");
+      std::size_t j = i + close.size();
+      while (j < text.size() && text.substr(j, close.size()) != close) {
+        if (c == '"' && text[j] == '\\') ++j;
+        if (j < text.size() && text[j] == '\n') ++line;
+        ++j;
+      }
+      i = std::min(text.size(), j + close.size()) - 1;
+      continue;
+    }
+    if (c == '=') in_key = false;
+    if (c == '.' && in_key && ++key_parts > kMaxNesting)
+      throw UserError(fmt::format("{}:{}: a key of more than {} parts: not a scene", source, line,
+                                  kMaxNesting));
+    if ((c == '[' || c == '{') && ++depth > kMaxNesting)
+      throw UserError(fmt::format("{}:{}: nesting deeper than {} levels: not a scene", source,
+                                  line, kMaxNesting));
+    if ((c == ']' || c == '}') && depth > 0) --depth;
+  }
+}
+
 std::string apply_override(toml::table& root, const std::string& assignment) {
   const std::string label = "--set " + assignment;
   const auto equals = assignment.find('=');
@@ -100,6 +147,7 @@ std::string apply_override(toml::table& root, const std::string& assignment) {
     throw UserError(label + ": expected KEY=VALUE with a TOML value, e.g. --set flag.fine=[65,97]");
   const std::string key = trim(assignment.substr(0, equals));
   const std::string value = trim(assignment.substr(equals + 1));
+  check_nesting(key + " = " + value, printable(label));
   toml::table patch;
   try {
     patch = toml::parse(key + " = " + value, label);
@@ -340,6 +388,7 @@ Scene build_scene(const toml::table& root, std::string_view source_path) {
 
 Scene parse_scene(std::string_view toml_text, std::string_view source_path,
                   std::span<const std::string> overrides) {
+  check_nesting(toml_text, source_path);
   toml::table root;
   try {
     root = toml::parse(toml_text, source_path);
@@ -355,11 +404,20 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_path,
 }
 
 Scene load_scene_file(const std::string& path, std::span<const std::string> overrides) {
+  // Only a regular file, and only as much as a scene can be: a FIFO would
+  // block, /dev/zero would never end.
+  constexpr std::uintmax_t kMaxSceneBytes = 1 << 20;
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status))
     throw UserError(fmt::format("{}: is a directory, expected a scene file (.toml)", path));
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw UserError(fmt::format("{}: not a regular file, expected a scene file (.toml)", path));
   std::ifstream file(path, std::ios::binary);
   if (!file) throw UserError(fmt::format("{}: cannot open scene file (does it exist?)", path));
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > kMaxSceneBytes)
+    throw UserError(fmt::format("{}: {} bytes, more than a scene file can be (at most {})", path,
+                                size, kMaxSceneBytes));
   std::ostringstream text;
   text << file.rdbuf();
   return parse_scene(text.str(), path, overrides);

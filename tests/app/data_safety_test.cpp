@@ -3,7 +3,9 @@
 // place a file outside out/, a second writer of the same output is refused,
 // helper programs get their paths as arguments, never through a shell.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -170,6 +172,58 @@ TEST(DataSafety, MergeRowsThatAreNotSweepRowsAreOneErrorLine) {
     expect_refused(r, "bad.csv:2: not a row of a flag-sim sweep CSV", row);
     EXPECT_FALSE(fs::exists(dir.file("m.csv"))) << row;
   }
+}
+
+}  // namespace
+}  // namespace flagsim::test
+
+namespace flagsim::test {
+namespace {
+
+TEST(DataSafety, DeepNestingIsOneErrorLineNotACrash) {
+  TempDir dir;
+  std::string header = "[", key, array = "x = ";
+  for (int i = 0; i < 50000; ++i) {
+    header += i ? ".a" : "a";
+    key += i ? ".a" : "a";
+  }
+  array += std::string(50000, '[') + std::string(50000, ']') + "\n";
+  dir.write("header.toml", header + "]\n");
+  dir.write("dotted.toml", key + " = 1\n");
+  dir.write("array.toml", array);
+  expect_refused(run_flag_sim({"validate", "header.toml"}, dir.path()), "header.toml:1: a key of",
+                 "deep table header");
+  expect_refused(run_flag_sim({"validate", "dotted.toml"}, dir.path()), "dotted.toml:1: a key of",
+                 "deep dotted key");
+  expect_refused(run_flag_sim({"validate", "array.toml"}, dir.path()),
+                 "array.toml:1: nesting deeper than 64", "deep array");
+  expect_refused(run_flag_sim({"run", "--set", "wind.velocity=" + std::string(50000, '[') +
+                                                   std::string(50000, ']'),
+                               "--frames", "1", "-o", "x.h5"},
+                              dir.path()),
+                 "nesting deeper than 64", "deep --set");
+  {
+    const ProcessResult r = run_flag_sim(
+        {"run", "--frames", "1", "-o", "y.h5", "--set", "x=" + std::string(50000, '[')},
+        dir.path());
+    expect_refused(r, "nesting deeper than 64", "deep --set, quoted");
+    EXPECT_LT(r.err.size(), 400u);  // the --set is quoted cut short, not 50 kB
+  }
+  EXPECT_EQ(dir.entry_count(), 3);
+}
+
+TEST(DataSafety, OnlyRegularFilesAreReadAsScenes) {
+  TempDir dir;
+  ASSERT_EQ(::mkfifo(dir.file("fifo.toml").c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  expect_refused(run_flag_sim({"validate", "fifo.toml"}, dir.path()),
+                 "fifo.toml: not a regular file", "FIFO");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));  // no block
+  expect_refused(run_flag_sim({"validate", "/dev/zero"}, dir.path()),
+                 "/dev/zero: not a regular file", "/dev/zero");
+  dir.write("huge.toml", std::string(2 << 20, '#'));
+  expect_refused(run_flag_sim({"validate", "huge.toml"}, dir.path()),
+                 "more than a scene file can be", "2 MiB scene");
 }
 
 }  // namespace
