@@ -2,20 +2,21 @@
 
 #include <csignal>
 
+#include "flagsim/core/stop_request.hpp"
+
 namespace flagsim::app {
 namespace {
 
-volatile std::sig_atomic_t g_interrupted = 0;
 struct sigaction g_previous_int, g_previous_term;
 
 extern "C" void on_signal(int) {
-  g_interrupted = 1;
+  request_stop();
 }
 
 }  // namespace
 
 InterruptGuard::InterruptGuard() {
-  g_interrupted = 0;
+  clear_stop_request();
   struct sigaction action {};
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);
@@ -29,7 +30,7 @@ InterruptGuard::~InterruptGuard() {
 }
 
 bool InterruptGuard::requested() {
-  return g_interrupted != 0;
+  return stop_requested();
 }
 
 }  // namespace flagsim::app

@@ -1,6 +1,7 @@
 #pragma once
-// SIGINT / SIGTERM during a run: the handler only raises a flag; the run loop
-// finishes the current frame, marks the file "interrupted" and exits 130.
+// SIGINT / SIGTERM during a run: the handler only raises the stop request
+// (core/stop_request.hpp); the loops inside a frame return early, the run
+// loop drops that incomplete frame, marks the file "interrupted", exits 130.
 
 namespace flagsim::app {
 

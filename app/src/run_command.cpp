@@ -116,6 +116,12 @@ int run_command(const RunOptions& options) {
   for (int frame = 0; frame < frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     if (frame > 0) simulation->advance_frame(&times);
+    if (frame > 0 && InterruptGuard::requested()) {  // the frame was cut short: not written
+      status = "interrupted";
+      reason = fmt::format("signal received during frame {} (t = {:.4g} s), which is not written",
+                           frame, frame / scene.fps);
+      break;
+    }
     const std::span<const Vec3> positions = simulation->positions();
     StrainStats strain;
     {

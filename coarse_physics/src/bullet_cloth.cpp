@@ -13,6 +13,7 @@
 
 #include "flagsim/coarse_physics/force_terms.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
+#include "flagsim/core/stop_request.hpp"
 
 namespace flagsim::physics {
 namespace {
@@ -193,7 +194,7 @@ void BulletCloth::advance_frame(StageTimes* times) {
   double in_terms = 0.0;
   if (times)
     for (int stage : term_stage_) in_terms -= times->seconds()[std::size_t(stage)];
-  for (int s = 0; s < substeps_per_frame_; ++s) {
+  for (int s = 0; s < substeps_per_frame_ && !stop_requested(); ++s) {
     world_->time_s = start + s * dt;
     world_->world.stepSimulation(dt, 0);  // exactly one substep of dt
   }

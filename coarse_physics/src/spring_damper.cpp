@@ -5,6 +5,7 @@
 
 #include "flagsim/coarse_physics/force_terms.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
+#include "flagsim/core/stop_request.hpp"
 
 namespace flagsim::physics {
 
@@ -50,7 +51,7 @@ void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
   const double dt = substep_s();
   const double start = state.time_s;
   for (const auto& term : terms_) term->begin_frame(start, state.x_m);
-  for (int s = 0; s < substeps_per_frame_; ++s) {
+  for (int s = 0; s < substeps_per_frame_ && !stop_requested(); ++s) {
     step(state, dt, times);
     // Time from the step count, so frames land exactly on t = n / fps.
     state.time_s = start + (s + 1) * dt;

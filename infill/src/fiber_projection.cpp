@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "flagsim/core/stop_request.hpp"
+
 // Lanes (below) are passed by value only between inlined helpers of this
 // file, never across an ABI boundary.
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -290,7 +292,7 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
         col_high2_[col_link] = std::numeric_limits<double>::infinity();
       }
     }
-  for (int round = 1; round <= max_rounds; ++round) {
+  for (int round = 1; round <= max_rounds && !stop_requested(); ++round) {
     report.rounds = round;
     const bool rows_moved =
         project_family(true, positions_m, tolerance, steps_per_fiber, &report.fiber_steps);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "flagsim/core/stop_request.hpp"
+
 namespace flagsim::infill {
 
 int relax_fiber(const Fiber& fiber, std::span<Vec3> positions_m, int max_sweeps, double tolerance) {
@@ -27,7 +29,7 @@ int relax_lattice(const Lattice& lattice, std::span<const std::uint8_t> held,
   const std::size_t stride = std::size_t(cols);
   Vec3* x = positions_m.data();
   const std::uint8_t* h = held.data();
-  for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
+  for (int sweep = 1; sweep <= max_sweeps && !stop_requested(); ++sweep) {
     // Red-black order: row links from even columns, then odd; column links from
     // even rows, then odd. Links of one pass share no node, so each pass has
     // no chain of dependent updates and the CPU overlaps them (a plain

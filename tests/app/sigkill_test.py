@@ -68,6 +68,30 @@ with tempfile.TemporaryDirectory() as tmp:
             check(n >= 1 and f["frames/time"].shape[0] == n, f"{sig.name}: frames {n}")
             check(np.all(np.isfinite(f["frames/positions"][...])), f"{sig.name}: finite frames")
 
+    # A signal inside a long frame (mass-spring on 129 x 193: seconds a frame)
+    # takes effect at the next substep: the run stops in well under a second,
+    # keeps the frames before, and does not write the one it was making.
+    out = os.path.join(tmp, "long.h5")
+    proc = subprocess.Popen(
+        [flag_sim, "run", "-o", out, "--quiet", "--mode", "mass-spring", "--frames", "50",
+         "--set", "output.flush_every=1"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    check(wait_for_growth(out + ".partial", 500_000), "long frames: frame 0 never written")
+    time.sleep(1.0)  # inside frame 1
+    sent = time.time()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    took = time.time() - sent
+    check(proc.returncode == 130, f"long frame: exit {proc.returncode} {err}")
+    check(took < 2.0, f"long frame: the signal took {took:.2f} s to stop the run")
+    with h5py.File(out, "r") as f:
+        check(f.attrs["status"] == "interrupted", f"long frame: status {f.attrs['status']}")
+        check("not written" in f.attrs["status_reason"], f"long frame: {f.attrs['status_reason']}")
+        n = f["frames/positions"].shape[0]
+        check(n >= 1, f"long frame: {n} frames kept")
+        check(np.all(np.isfinite(f["frames/positions"][...])), "long frame: finite frames")
+    print(f"SIGINT inside a frame: stopped in {took:.2f} s")
+
 for failure in failures:
     print("FAILED:", failure)
 print(f"{0 if failures else 1} passed, {1 if failures else 0} failed")
