@@ -121,6 +121,9 @@ int main(int argc, char** argv) {
     return fail(ExitCode::kBadInput, e.what());
   } catch (const flagsim::IoError& e) {
     return fail(ExitCode::kIoFailure, e.what());
+  } catch (const flagsim::Interrupted& e) {
+    fmt::print(stderr, "interrupted: {}\n", e.what());
+    return int(ExitCode::kInterrupted);
   } catch (const std::bad_alloc&) {
     return fail(ExitCode::kBadInput,
                 "out of memory: the lattice or run is too large for this machine");

@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +21,7 @@
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "interrupt.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
 
@@ -200,15 +203,33 @@ std::vector<std::string> run_children(const std::vector<std::string>& argv, int 
   std::vector<std::string> lines;
   std::map<pid_t, int> running;
   int next = 0, failed = -1;
+  // SIGINT / SIGTERM to this process: stop starting points, pass SIGTERM on
+  // to every worker, wait for them all (none is left orphaned), exit 130.
+  const InterruptGuard interrupt;
   auto reap = [&] {
     int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
+    const pid_t pid = waitpid(-1, &status, 0);  // a signal interrupts it (EINTR)
     if (pid <= 0) return;
     const int point = running[pid];
     running.erase(pid);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) failed = point;
   };
   while ((next < count && failed < 0) || !running.empty()) {
+    if (InterruptGuard::requested()) {
+      const std::size_t stopped = running.size();
+      for (const auto& [pid, point] : running) kill(pid, SIGTERM);
+      while (!running.empty()) {
+        int status = 0;
+        const pid_t pid = waitpid(-1, &status, 0);
+        if (pid > 0) running.erase(pid);
+        else if (errno != EINTR) break;
+      }
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+      throw Interrupted(fmt::format("sweep: stopped by a signal after {} of {} points; the {} "
+                                    "running were stopped, nothing is written",
+                                    next - int(stopped), count, stopped));
+    }
     if (next < count && int(running.size()) < jobs && failed < 0) {
       std::vector<std::string> args = child_arguments(argv);
       args.insert(args.end(), {"--point", std::to_string(next), "-o",

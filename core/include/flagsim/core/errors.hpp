@@ -27,6 +27,13 @@ class UserError : public std::runtime_error {
 
 /// A failure to read or write a file once the run has started (disk full,
 /// directory removed): exit code 4, whatever was flushed stays readable.
+/// The user stopped a command (SIGINT, SIGTERM) that cleans up after itself
+/// and exits 130: the message says what was stopped and what is kept.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class IoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
