@@ -11,10 +11,12 @@
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/scene_parser.hpp"
+#include "flagsim/core/stop_request.hpp"
 #include "flagsim/data/output_reader.hpp"
 #include "flagsim/render/camera.hpp"
 #include "flagsim/render/offscreen_context.hpp"
 #include "flagsim/render/png_io.hpp"
+#include "interrupt.hpp"
 #include "flagsim/render/video_writer.hpp"
 
 namespace flagsim::app {
@@ -119,6 +121,10 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
     video.emplace(plan.output, plan.width, plan.height, reader.number_attribute("fps", 30.0));
   double draw_s = 0.0, encode_s = 0.0;
   for (int t = 0; t < frames; ++t) {
+    if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
+      throw Interrupted(fmt::format("rendering {} stopped by a signal after {} of {} frames; {} is "
+                                    "kept",
+                                    plan.output, t, frames, h5_path));
     const std::vector<Vec3> positions = reader.positions(t);
     render::FrameView view{rows, cols, positions, std::nullopt};
     if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
@@ -145,6 +151,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
 }
 
 int render_command(const std::string& h5_path, const RenderRequest& request) {
+  const InterruptGuard interrupt;
   FileRoles files;
   files.input(h5_path, "the input");
   if (request.texture) files.input(*request.texture, "--texture");

@@ -92,6 +92,29 @@ with tempfile.TemporaryDirectory() as tmp:
         check(np.all(np.isfinite(f["frames/positions"][...])), "long frame: finite frames")
     print(f"SIGINT inside a frame: stopped in {took:.2f} s")
 
+    # A signal while `run --render` draws: the render stops, the run's file is kept, exit 130.
+    out = os.path.join(tmp, "drawn.h5")
+    frames_dir = os.path.join(tmp, "drawn_frames")
+    proc = subprocess.Popen(
+        [flag_sim, "run", "-o", out, "--quiet", "--set", "flag.fine=[17,25]", "--frames", "600",
+         "--render", frames_dir, "--size", "1280x720"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    while time.time() < deadline and (not os.path.isdir(frames_dir) or len(os.listdir(frames_dir)) < 3):
+        time.sleep(0.05)
+    sent = time.time()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    took = time.time() - sent
+    check(proc.returncode == 130, f"render: exit {proc.returncode} {err}")
+    check(took < 2.0, f"render: the signal took {took:.2f} s")
+    check(len(os.listdir(frames_dir)) < 600, "render: every frame was drawn anyway")
+    check(err.startswith("interrupted: rendering"), f"render: {err}")
+    with h5py.File(out, "r") as f:
+        check(f.attrs["status"] == "complete", "render: the run's file is kept whole")
+        check(f["frames/positions"].shape[0] == 600, "render: the run's frames")
+    print(f"SIGINT during run --render: stopped in {took:.2f} s")
+
 for failure in failures:
     print("FAILED:", failure)
 print(f"{0 if failures else 1} passed, {1 if failures else 0} failed")
