@@ -185,7 +185,7 @@ void read_scene_table(TableReader& in, Scene& scene, std::string_view source_pat
   scene.mode =
       parse_mode(in.choice("mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "infill"}));
   scene.fps = in.real("fps", 30.0, Bound{0.0, 10000.0, true}, "frames per second");
-  scene.duration_s = in.real("duration", 10.0, Bound::positive(), "s");
+  scene.duration_s = in.real("duration", 10.0, Bound{0.0, 1.0e6, true}, "s");
   if (auto frames = in.optional_integer("frames", 1, kMaxFrames))
     scene.duration_s = double(*frames - 1) / scene.fps;  // extension key, set by --frames
   scene.seed = std::uint64_t(in.integer("seed", 0, 0, std::numeric_limits<long long>::max()));
@@ -196,7 +196,7 @@ void read_scene_table(TableReader& in, Scene& scene, std::string_view source_pat
 
 void read_flag_table(TableReader& in, FlagSpec& flag) {
   const auto size =
-      in.real_pair("size", {flag.width_m, flag.height_m}, Bound{0.0, 1.0e4, true}, "[w, h] in m");
+      in.real_pair("size", {flag.width_m, flag.height_m}, Bound{0.0, 1.0e3, true}, "[w, h] in m");
   flag.width_m = size[0];
   flag.height_m = size[1];
   flag.origin_m = in.vec3("origin", flag.origin_m, "m");
@@ -206,16 +206,16 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
   }
   flag.coarse = in.int_pair("coarse", 2, kMaxLatticeSide, "[Jc, Kc] nodes");
   flag.areal_density_kg_m2 =
-      in.real("areal_density", flag.areal_density_kg_m2, Bound{0.0, 1.0e4, true}, "kg/m^2");
+      in.real("areal_density", flag.areal_density_kg_m2, Bound{1.0e-4, 100.0, false}, "kg/m^2");
   flag.stretch_modulus_n_m =
-      in.real("stretch_modulus", flag.stretch_modulus_n_m, Bound{0.0, 1.0e12, true}, "N/m");
+      in.real("stretch_modulus", flag.stretch_modulus_n_m, Bound{0.0, 1.0e8, true}, "N/m");
   // Default shear stiffness: a tenth of the stretch stiffness, loosely woven cloth.
   flag.shear_modulus_n_m =
-      in.real("shear_modulus", flag.stretch_modulus_n_m / 10.0, Bound{0.0, 1.0e12, false}, "N/m");
+      in.real("shear_modulus", flag.stretch_modulus_n_m / 10.0, Bound{0.0, 1.0e8, false}, "N/m");
   flag.damping_per_s = in.real("damping", flag.damping_per_s, Bound{0.0, 1.0e6, false}, "1/s");
   flag.pin = parse_pin(in.choice("pin", "left", {"left", "right", "top", "corners", "none"}));
   flag.initial_perturbation_m =
-      in.real("initial_perturbation", 0.0, Bound::between(0.0, 1.0e3), "m");
+      in.real("initial_perturbation", 0.0, Bound::between(0.0, 10.0), "m");
 }
 
 void read_effect_tables(TableReader& root, Scene& scene) {
@@ -226,8 +226,8 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     const Vec3 axis = in.vec3("axis", Vec3::UnitY(), "(direction)");
     if (axis.norm() == 0.0) in.fail("axis", "expected a non-zero direction [x, y, z]");
     pole.axis_unit = axis.normalized();
-    pole.amplitude_m = in.real("amplitude", 0.1, Bound::between(0.0, 1.0e3), "m");
-    pole.frequency_hz = in.real("frequency", 1.0, Bound::between(0.0, 1.0e4), "Hz");
+    pole.amplitude_m = in.real("amplitude", 0.1, Bound::between(0.0, 100.0), "m");
+    pole.frequency_hz = in.real("frequency", 1.0, Bound::between(0.0, 100.0), "Hz");
     in.finish(kAllKeys);
     scene.pole = pole;
   }
@@ -235,6 +235,10 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     TableReader in(*t, "gravity", root.where_of("gravity"));
     Gravity gravity;
     gravity.acceleration_m_s2 = in.vec3("acceleration", gravity.acceleration_m_s2, "m/s^2");
+    // Past 1000 m/s^2 (100 g) no cloth scene is meant; the substeps would never end.
+    if (!(gravity.acceleration_m_s2.stableNorm() <= 1000.0))
+      in.fail("acceleration", fmt::format("expected a magnitude of at most 1000 m/s^2, got {:g}",
+                                          gravity.acceleration_m_s2.stableNorm()));
     in.finish(kAllKeys);
     if (gravity.acceleration_m_s2.norm() > 0.0) scene.gravity = gravity;
   }
@@ -242,20 +246,24 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     TableReader in(*t, "wind", root.where_of("wind"));
     Wind wind;
     wind.velocity_m_s = in.vec3("velocity", wind.velocity_m_s, "m/s");
+    // Past 200 m/s (beyond any storm; a 1e308 wind never finished a frame).
+    if (!(wind.velocity_m_s.stableNorm() <= 200.0))
+      in.fail("velocity", fmt::format("expected a wind speed of at most 200 m/s, got {:g}",
+                                      wind.velocity_m_s.stableNorm()));
     wind.drag = in.real("drag", wind.drag, Bound::between(0.0, 100.0), "");
     wind.lift = in.real("lift", wind.lift, Bound::between(0.0, 100.0), "");
     wind.air_density_kg_m3 =
-        in.real("air_density", wind.air_density_kg_m3, Bound{0.0, 1.0e4, true}, "kg/m^3");
+        in.real("air_density", wind.air_density_kg_m3, Bound{0.0, 100.0, true}, "kg/m^3");
     if (const toml::table* g = in.subtable("gusts")) {
       TableReader gin(*g, "wind.gusts", in.where_of("gusts"));
       wind.gusts = Gusts{gin.real("amplitude", 0.2, Bound::between(0.0, 10.0), "(fraction)"),
-                         gin.real("period", 2.0, Bound::positive(), "s")};
+                         gin.real("period", 2.0, Bound{1.0e-3, 1.0e6, false}, "s")};
       gin.finish(kAllKeys);
     }
     if (const toml::table* tt = in.subtable("turbulence")) {
       TableReader tin(*tt, "wind.turbulence", in.where_of("turbulence"));
       wind.turbulence = Turbulence{tin.real("intensity", 0.1, Bound::between(0.0, 10.0), ""),
-                                   tin.real("length_scale", 1.0, Bound::positive(), "m")};
+                                   tin.real("length_scale", 1.0, Bound{1.0e-3, 1.0e4, false}, "m")};
       tin.finish(kAllKeys);
     }
     in.finish(kAllKeys);
@@ -263,7 +271,7 @@ void read_effect_tables(TableReader& root, Scene& scene) {
   }
   if (const toml::table* t = root.subtable("bending")) {
     TableReader in(*t, "bending", root.where_of("bending"));
-    scene.bending = Bending{in.real("stiffness", 1.0e-4, Bound::non_negative(), "N m")};
+    scene.bending = Bending{in.real("stiffness", 1.0e-4, Bound::between(0.0, 1.0), "N m")};
     in.finish(kAllKeys);
   }
 }
@@ -272,9 +280,9 @@ void read_infill_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("wrinkles")) {
     TableReader in(*t, "wrinkles", root.where_of("wrinkles"));
     Wrinkles w;
-    w.fiber_radius_m = in.real("fiber_radius", 1.0e-3, Bound::positive(), "m");
-    w.fiber_modulus_pa = in.real("fiber_modulus", 1.0e9, Bound::positive(), "Pa");
-    w.k_prime = in.optional_real("k_prime", Bound::non_negative(), "");
+    w.fiber_radius_m = in.real("fiber_radius", 1.0e-3, Bound{0.0, 0.01, true}, "m");
+    w.fiber_modulus_pa = in.real("fiber_modulus", 1.0e9, Bound{0.0, 1.0e12, true}, "Pa");
+    w.k_prime = in.optional_real("k_prime", Bound::between(0.0, 1.0e6), "");
     w.tolerance = in.optional_real("tolerance", Bound::non_negative(), "(relative)");
     if (auto rounds = in.optional_integer("rounds", 0, 1000)) w.rounds = int(*rounds);
     in.finish(kAllKeys);
@@ -300,7 +308,7 @@ void read_infill_tables(TableReader& root, Scene& scene) {
     for (const toml::node& item : *list) {
       TableReader in(*item.as_table(), "keyframe", detail::where(item.source()));
       Keyframe key;
-      key.time_s = in.real("time", 0.0, Bound::non_negative(), "s");
+      key.time_s = in.real("time", 0.0, Bound::between(0.0, 1.0e6), "s");
       const toml::node* corners = in.table().get("corners");
       in.allow("corners");
       const toml::array* array = corners ? corners->as_array() : nullptr;
@@ -351,7 +359,7 @@ void read_run_tables(TableReader& root, Scene& scene) {
     TableReader in(*t, "limits", root.where_of("limits"));
     scene.limits.max_strain = in.real("max_strain", scene.limits.max_strain, Bound::positive(), "");
     scene.limits.max_speed_m_s =
-        in.real("max_speed", scene.limits.max_speed_m_s, Bound::positive(), "m/s");
+        in.real("max_speed", scene.limits.max_speed_m_s, Bound{0.0, 1.0e6, true}, "m/s");
     in.finish(kAllKeys);
   }
 }

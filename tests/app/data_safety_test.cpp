@@ -228,3 +228,29 @@ TEST(DataSafety, OnlyRegularFilesAreReadAsScenes) {
 
 }  // namespace
 }  // namespace flagsim::test
+
+namespace flagsim::test {
+namespace {
+
+TEST(DataSafety, PhysicalValuesNoRealSceneNeedsAreRefusedWithTheirRange) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"wind.velocity=[1e308,0,0]", "at most 200 m/s, got 1e+308"},
+      {"flag.areal_density=1e-300", "in [0.0001, 100] kg/m^2"},
+      {"bending.stiffness=1e299", "in [0, 1] N m"},
+      {"gravity.acceleration=[0,-1e9,0]", "at most 1000 m/s^2"},
+      {"flag.stretch_modulus=1e20", "N/m"},
+      {"pole.frequency=1e4", "Hz"},
+  };
+  for (const auto& [set, words] : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    expect_refused(run_flag_sim({"run", "s.toml", "--set", set, "-o", "x.h5"}, dir.path()), words,
+                   set);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10)) << set;
+  }
+  EXPECT_EQ(dir.entry_count(), 1);
+}
+
+}  // namespace
+}  // namespace flagsim::test
