@@ -50,8 +50,8 @@ double percentile(std::vector<double> values, double p) {
 
 // Args: solver (0 smooth, 1 paper), J, K, frames replayed (0: all).
 void BM_InfillReplay(benchmark::State& bench) {
-  const auto kind = bench.range(0) == 0 ? flagsim::InfillSolverKind::kSmooth
-                                        : flagsim::InfillSolverKind::kPaper;
+  const auto kind =
+      bench.range(0) == 0 ? flagsim::InfillSolverKind::kSmooth : flagsim::InfillSolverKind::kPaper;
   const Lattice lattice =
       Lattice::rectangle(int(bench.range(1)), int(bench.range(2)), 1.5, 1.0, Vec3(0.0, 2.0, 0.0));
   const auto& trajectory = coarse_trajectory();
@@ -73,8 +73,8 @@ void BM_InfillReplay(benchmark::State& bench) {
   std::vector<double> ms, rounds;
   double max_strain = 0.0;
   for (auto _ : bench) {
-    auto infill =
-        flagsim::infill::make_infill(lattice, flagsim::infill::CellGrid::of(lattice, 9, 13), options);
+    auto infill = flagsim::infill::make_infill(
+        lattice, flagsim::infill::CellGrid::of(lattice, 9, 13), options);
     infill->hold(flagsim::physics::pinned_nodes(lattice, flagsim::PinSet::kLeft));
     std::vector<Vec3> dense = lattice.rest_positions();
     infill->fill(coarse[0], dense, nullptr);

@@ -16,8 +16,8 @@
 #include "flagsim/render/camera.hpp"
 #include "flagsim/render/offscreen_context.hpp"
 #include "flagsim/render/png_io.hpp"
-#include "interrupt.hpp"
 #include "flagsim/render/video_writer.hpp"
+#include "interrupt.hpp"
 
 namespace flagsim::app {
 namespace fs = std::filesystem;
@@ -122,9 +122,10 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   double draw_s = 0.0, encode_s = 0.0;
   for (int t = 0; t < frames; ++t) {
     if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
-      throw Interrupted(fmt::format("rendering {} stopped by a signal after {} of {} frames; {} is "
-                                    "kept",
-                                    plan.output, t, frames, h5_path));
+      throw Interrupted(
+          fmt::format("rendering {} stopped by a signal after {} of {} frames; {} is "
+                      "kept",
+                      plan.output, t, frames, h5_path));
     const std::vector<Vec3> positions = reader.positions(t);
     render::FrameView view{rows, cols, positions, std::nullopt};
     if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge

@@ -89,9 +89,9 @@ std::string csv_header() {
 
 std::string csv_line(const ReportRow& r) {
   return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{}", r.point,
-      r.label, r.mode, r.backend, r.fine, r.coarse, r.substeps, r.relax_iterations, r.frames,
-      r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
+      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{}",
+      r.point, r.label, r.mode, r.backend, r.fine, r.coarse, r.substeps, r.relax_iterations,
+      r.frames, r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
       optional_text(r.short_horizon_rms_m), optional_text(r.tracking_rms_m),
       optional_text(r.flap_hz), optional_text(r.flap_rel_error), optional_text(r.mean_shape_rms_m),
       optional_text(r.wrinkle_wavelength_m), r.status, r.infill_solver);
@@ -115,9 +115,10 @@ std::vector<std::string> csv_rows(const std::string& path) {
     const std::string point = line.substr(0, line.find(','));
     if (fields(line) != header_fields || point.empty() || point.size() > 9 ||
         !std::all_of(point.begin(), point.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      throw UserError(fmt::format("{}:{}: not a row of a flag-sim sweep CSV ({} fields, the first a "
-                                  "point number, expected)",
-                                  path, number, header_fields));
+      throw UserError(
+          fmt::format("{}:{}: not a row of a flag-sim sweep CSV ({} fields, the first a "
+                      "point number, expected)",
+                      path, number, header_fields));
     rows.push_back(line);
   }
   return rows;

@@ -16,10 +16,10 @@
 #include "flagsim/core/strain.hpp"
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
+#include "flagsim/hybrid/simulation.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "render_command.hpp"
-#include "flagsim/hybrid/simulation.hpp"
 
 namespace flagsim::app {
 namespace {
@@ -149,8 +149,12 @@ int run_command(const RunOptions& options) {
         unconverged_frames += report.converged ? 0 : 1;
         worst_residual = std::max(worst_residual, report.residual);
       }
-      data::FrameStats stats{strain.max,      strain.mean, times.seconds(), seconds_since(since_write),
-                             simulation->kinetic_energy_j(), series};
+      data::FrameStats stats{strain.max,
+                             strain.mean,
+                             times.seconds(),
+                             seconds_since(since_write),
+                             simulation->kinetic_energy_j(),
+                             series};
       // Frame times are n / fps exactly, not the sum of the substeps.
       writer.write_frame(frame / scene.fps, positions, stats, simulation->coarse_positions());
       times.reset();
@@ -190,9 +194,10 @@ int run_command(const RunOptions& options) {
              ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   if (unconverged_frames > 0)
-    fmt::print("note: the infill did not reach its tolerance in {} of {} frames (worst link {:.3f}% "
-               "beyond it; /stats/infill_converged)\n",
-               unconverged_frames, writer.frames_written(), 100.0 * worst_residual);
+    fmt::print(
+        "note: the infill did not reach its tolerance in {} of {} frames (worst link {:.3f}% "
+        "beyond it; /stats/infill_converged)\n",
+        unconverged_frames, writer.frames_written(), 100.0 * worst_residual);
   if (!rendered.empty()) fmt::print("{}\n", rendered);
   return status == "interrupted" ? int(ExitCode::kInterrupted) : int(ExitCode::kSuccess);
 }

@@ -89,9 +89,9 @@ std::vector<SweepPoint> grid_of(const SweepOptions& o) {
   const auto relax =
       o.relax.empty() ? std::vector<int>{0} : parse_list<int>("--relax", o.relax, parse_count);
   // Empty: the scene's own infill solver.
-  const auto infill =
-      o.infill.empty() ? std::vector<std::string>{""}
-                       : parse_list<std::string>("--infill", o.infill, parse_infill_solver);
+  const auto infill = o.infill.empty()
+                          ? std::vector<std::string>{""}
+                          : parse_list<std::string>("--infill", o.infill, parse_infill_solver);
   for (const auto& [jc, kc] : coarse)
     for (int s : substeps)
       for (const std::string& solver : infill)
@@ -221,14 +221,17 @@ std::vector<std::string> run_children(const std::vector<std::string>& argv, int 
       while (!running.empty()) {
         int status = 0;
         const pid_t pid = waitpid(-1, &status, 0);
-        if (pid > 0) running.erase(pid);
-        else if (errno != EINTR) break;
+        if (pid > 0)
+          running.erase(pid);
+        else if (errno != EINTR)
+          break;
       }
       std::error_code ec;
       fs::remove_all(dir, ec);
-      throw Interrupted(fmt::format("sweep: stopped by a signal after {} of {} points; the {} "
-                                    "running were stopped, nothing is written",
-                                    next - int(stopped), count, stopped));
+      throw Interrupted(
+          fmt::format("sweep: stopped by a signal after {} of {} points; the {} "
+                      "running were stopped, nothing is written",
+                      next - int(stopped), count, stopped));
     }
     if (next < count && int(running.size()) < jobs && failed < 0) {
       std::vector<std::string> args = child_arguments(argv);

@@ -20,7 +20,8 @@ void FileRoles::output(std::string path, std::string what) {
 }
 
 bool same_file(const std::string& a, const std::string& b) {
-  struct stat sa {}, sb {};
+  struct stat sa {
+  }, sb{};
   if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
     return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
   // One of them does not exist (yet): the same path once resolved.
@@ -35,15 +36,14 @@ void FileRoles::check() const {
     const Role& out = outputs_[o];
     for (const Role& in : inputs_)
       if (same_file(out.path, in.path))
-        throw UserError(fmt::format(
-            "{}: {} would overwrite {} ({}); choose another output path", out.path, out.what,
-            in.what, in.path));
+        throw UserError(fmt::format("{}: {} would overwrite {} ({}); choose another output path",
+                                    out.path, out.what, in.what, in.path));
     for (std::size_t other = 0; other < o; ++other)
       if (same_file(out.path, outputs_[other].path))
-        throw UserError(fmt::format("{}: {} and {} ({}) would be the same file; choose another "
-                                    "output path",
-                                    out.path, out.what, outputs_[other].what,
-                                    outputs_[other].path));
+        throw UserError(
+            fmt::format("{}: {} and {} ({}) would be the same file; choose another "
+                        "output path",
+                        out.path, out.what, outputs_[other].what, outputs_[other].path));
   }
 }
 

@@ -134,8 +134,8 @@ void check_nesting(std::string_view text, std::string_view source) {
       throw UserError(fmt::format("{}:{}: a key of more than {} parts: not a scene", source, line,
                                   kMaxNesting));
     if ((c == '[' || c == '{') && ++depth > kMaxNesting)
-      throw UserError(fmt::format("{}:{}: nesting deeper than {} levels: not a scene", source,
-                                  line, kMaxNesting));
+      throw UserError(fmt::format("{}:{}: nesting deeper than {} levels: not a scene", source, line,
+                                  kMaxNesting));
     if ((c == ']' || c == '}') && depth > 0) --depth;
   }
 }
@@ -423,7 +423,8 @@ Scene load_scene_file(const std::string& path, std::span<const std::string> over
     throw UserError(fmt::format("{}: not a regular file, expected a scene file (.toml)", path));
   std::ifstream file(path, std::ios::binary);
   if (!file) throw UserError(fmt::format("{}: cannot open scene file (does it exist?)", path));
-  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > kMaxSceneBytes)
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      !ec && size > kMaxSceneBytes)
     throw UserError(fmt::format("{}: {} bytes, more than a scene file can be (at most {})", path,
                                 size, kMaxSceneBytes));
   std::ostringstream text;

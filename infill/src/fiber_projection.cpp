@@ -27,9 +27,8 @@ FiberProjection::FiberProjection(const Lattice& fine)
       row_bands_(std::size_t(fine.rows) * std::size_t(fine.cols - 1)),
       col_bands_(std::size_t(fine.rows - 1) * std::size_t(fine.cols)) {
   const std::size_t lanes = std::size_t(std::max(fine.rows, fine.cols)) * kLanes;
-  for (std::vector<double>* buffer :
-       {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_, &diag_, &off_, &rhs_, &dx_,
-        &dy_, &dz_})
+  for (std::vector<double>* buffer : {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_,
+                                      &diag_, &off_, &rhs_, &dx_, &dy_, &dz_})
     buffer->resize(lanes);
   set_uniform_band(0.0);
 }
@@ -56,8 +55,12 @@ Lanes load(const double* p) {
   __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
-void store(double* p, Lanes v) { __builtin_memcpy(p, &v, sizeof v); }
-Lanes splat(double value) { return Lanes{} + value; }
+void store(double* p, Lanes v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+Lanes splat(double value) {
+  return Lanes{} + value;
+}
 
 __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lanes(
     int links, double rest_m, double tolerance, int steps, int* steps_made) {
@@ -125,8 +128,9 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
     }
     for (int i = 0; i + 1 < links; ++i) {
       const int a = i * L, b = a + L;
-      const Lanes upper = -load(w + b) * (load(nx + a) * load(nx + b) + load(ny + a) * load(ny + b) +
-                                          load(nz + a) * load(nz + b));
+      const Lanes upper =
+          -load(w + b) *
+          (load(nx + a) * load(nx + b) + load(ny + a) * load(ny + b) + load(nz + a) * load(nz + b));
       const Lanes ca = upper * load(inverse_pivot + a);
       store(c + a, ca);
       const Lanes diag = load(w + b) + load(w + b + L) + damping;
@@ -186,7 +190,7 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
 }
 
 bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, double tolerance,
-                                       int steps, int* steps_made) {
+                                     int steps, int* steps_made) {
   const int J = lattice_.rows, K = lattice_.cols;
   const int fibers = rows ? J : K, links = rows ? K - 1 : J - 1;
   const std::size_t stride = rows ? 1 : std::size_t(K);

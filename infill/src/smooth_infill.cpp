@@ -29,7 +29,8 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
                                             fine.spacing_x_m * (fine.cols - 1),
                                             fine.spacing_y_m * (fine.rows - 1), fine.origin_m);
     coarser_ = std::make_unique<SmoothInfill>(
-        half, CellGrid{grid.coarse_rows, grid.coarse_cols, grid.row_stride / 2, grid.col_stride / 2},
+        half,
+        CellGrid{grid.coarse_rows, grid.coarse_cols, grid.row_stride / 2, grid.col_stride / 2},
         wrinkles);
     coarser_positions_.resize(half.node_count());
     coarser_surface_.resize(half.node_count());
@@ -84,7 +85,9 @@ void SmoothInfill::add_wrinkles(std::span<Vec3> positions_m) {
   const auto fiber_wave = [&](std::size_t first, std::size_t stride, int segments, double rest_m) {
     double length = 0.0;  // c: the fiber along the surface
     for (int i = 0; i < segments; ++i)
-      length += (surface_[first + std::size_t(i + 1) * stride] - surface_[first + std::size_t(i) * stride]).norm();
+      length += (surface_[first + std::size_t(i + 1) * stride] -
+                 surface_[first + std::size_t(i) * stride])
+                    .norm();
     const double slack = segments * rest_m - length;  // dL of eq. (13)
     if (slack <= 0.0 || wrinkles_->k_r4 <= 0.0) return;
     const int half_waves = half_wave_count(length, slack, segments, *wrinkles_);
@@ -163,7 +166,7 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
     spline_.evaluate(coarse_m, positions_m);
     if (coarser_) add_coarser_offsets(positions_m);
   });
-  run_timed(times, stage_[1], [&] { set_bands(coarse_m); });                        // 3.3
+  run_timed(times, stage_[1], [&] { set_bands(coarse_m); });  // 3.3
   ProjectionReport projected;
   const auto relax = [&] {  // 3.4
     projected = projection_.project(positions_m, kProjectionTolerance, kMaxProjectionRounds,
@@ -185,10 +188,10 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   report_.coarse_offset_m = 0.0;
   for (int jc = 0; jc < grid_.coarse_rows; ++jc)
     for (int kc = 0; kc < grid_.coarse_cols; ++kc)
-      report_.coarse_offset_m =
-          std::max(report_.coarse_offset_m, (positions_m[grid_.dense_index(lattice_, jc, kc)] -
-                                             coarse_m[grid_.coarse_index(jc, kc)])
-                                                .norm());
+      report_.coarse_offset_m = std::max(
+          report_.coarse_offset_m,
+          (positions_m[grid_.dense_index(lattice_, jc, kc)] - coarse_m[grid_.coarse_index(jc, kc)])
+              .norm());
 }
 
 }  // namespace flagsim::infill

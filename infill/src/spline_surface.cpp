@@ -1,9 +1,8 @@
 #include "flagsim/infill/spline_surface.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cassert>
-
-#include <Eigen/LU>
 
 namespace flagsim::infill {
 
@@ -14,7 +13,8 @@ Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
   // Third and second difference operators on the dense samples.
   const auto differences = [n](int order) {
     Eigen::MatrixXd d = Eigen::MatrixXd::Identity(n, n);
-    for (int o = 0; o < order; ++o) d = (d.bottomRows(d.rows() - 1) - d.topRows(d.rows() - 1)).eval();
+    for (int o = 0; o < order; ++o)
+      d = (d.bottomRows(d.rows() - 1) - d.topRows(d.rows() - 1)).eval();
     return d;
   };
   // Polynomials of degree < order have no order-th difference: with fewer
@@ -48,9 +48,11 @@ SplineSurface::SplineSurface(const Lattice& fine, const CellGrid& grid)
       dense_(fine.rows, fine.cols) {}
 
 void SplineSurface::evaluate(std::span<const Vec3> coarse_m, std::span<Vec3> dense_m) {
-  assert(coarse_m.size() == std::size_t(coarse_.size()) && dense_m.size() == std::size_t(dense_.size()));
+  assert(coarse_m.size() == std::size_t(coarse_.size()) &&
+         dense_m.size() == std::size_t(dense_.size()));
   for (int d = 0; d < 3; ++d) {
-    for (Eigen::Index i = 0; i < coarse_.size(); ++i) coarse_.data()[i] = coarse_m[std::size_t(i)][d];
+    for (Eigen::Index i = 0; i < coarse_.size(); ++i)
+      coarse_.data()[i] = coarse_m[std::size_t(i)][d];
     half_.noalias() = coarse_ * cols_t_;
     dense_.noalias() = rows_ * half_;
     for (Eigen::Index i = 0; i < dense_.size(); ++i) dense_m[std::size_t(i)][d] = dense_.data()[i];

@@ -34,11 +34,19 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   std::signal(SIGPIPE, SIG_IGN);  // a dead ffmpeg is reported by fwrite, not by a signal
   // An argument vector, never a shell command: the path is one argument.
   ffmpeg_ = std::make_unique<ChildProcess>(
-      std::vector<std::string>{ffmpeg, "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt",
-                               "rgb24", "-s", fmt::format("{}x{}", width, height), "-r",
-                               fmt::format("{}", fps), "-i", "-", "-c:v", "libx264", "-preset",
-                               "veryfast", "-crf", "20", "-pix_fmt", "yuv420p", "-movflags",
-                               "+faststart", path},
+      std::vector<std::string>{ffmpeg,      "-loglevel",
+                               "error",     "-y",
+                               "-f",        "rawvideo",
+                               "-pix_fmt",  "rgb24",
+                               "-s",        fmt::format("{}x{}", width, height),
+                               "-r",        fmt::format("{}", fps),
+                               "-i",        "-",
+                               "-c:v",      "libx264",
+                               "-preset",   "veryfast",
+                               "-crf",      "20",
+                               "-pix_fmt",  "yuv420p",
+                               "-movflags", "+faststart",
+                               path},
       true, false);
   if (!ffmpeg_->valid()) throw IoError(fmt::format("{}: cannot start ffmpeg", path));
   pipe_ = ffmpeg_->input();
@@ -55,8 +63,7 @@ void VideoWriter::write(const Image& frame) {
 void VideoWriter::finish() {
   const int status = ffmpeg_->wait();
   pipe_ = nullptr;
-  if (status != 0)
-    throw IoError(fmt::format("{}: ffmpeg failed to write the video", path_));
+  if (status != 0) throw IoError(fmt::format("{}: ffmpeg failed to write the video", path_));
 }
 
 }  // namespace flagsim::render

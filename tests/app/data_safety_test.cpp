@@ -139,10 +139,9 @@ TEST(DataSafety, HelperProgramsGetPathsAsArgumentsNotThroughAShell) {
                   .exit_code,
               0);
   const std::string hostile = "x';touch INJECTED;'.csv";
-  const ProcessResult merged =
-      run_flag_sim({"sweep", "--merge", "p0.csv", "p2.csv", "-o", hostile, "--plot",
-                    "p'$(touch INJECTED2)'.png"},
-                   dir.path());
+  const ProcessResult merged = run_flag_sim({"sweep", "--merge", "p0.csv", "p2.csv", "-o", hostile,
+                                             "--plot", "p'$(touch INJECTED2)'.png"},
+                                            dir.path());
   EXPECT_EQ(merged.exit_code, 0) << merged.err;
   EXPECT_TRUE(fs::exists(dir.file(hostile)));
   EXPECT_TRUE(fs::exists(dir.file("p'$(touch INJECTED2)'.png")));
@@ -159,16 +158,17 @@ namespace {
 TEST(DataSafety, MergeRowsThatAreNotSweepRowsAreOneErrorLine) {
   TempDir dir;
   dir.write("s.toml", kTiny);
-  ASSERT_EQ(run_flag_sim({"sweep", "s.toml", "--coarse", "9x13", "--point", "0", "-o", "p0.csv",
-                          "--quiet"},
-                         dir.path())
+  ASSERT_EQ(run_flag_sim(
+                {"sweep", "s.toml", "--coarse", "9x13", "--point", "0", "-o", "p0.csv", "--quiet"},
+                dir.path())
                 .exit_code,
             0);
   const std::string good = read(dir.file("p0.csv"));
   const std::string header = good.substr(0, good.find('\n') + 1);
   for (const char* row : {"abc,def", "99999999999,x", "-5,x", "7", " 3 ,x"}) {
     dir.write("bad.csv", header + row + "\n");
-    const ProcessResult r = run_flag_sim({"sweep", "--merge", "bad.csv", "-o", "m.csv"}, dir.path());
+    const ProcessResult r =
+        run_flag_sim({"sweep", "--merge", "bad.csv", "-o", "m.csv"}, dir.path());
     expect_refused(r, "bad.csv:2: not a row of a flag-sim sweep CSV", row);
     EXPECT_FALSE(fs::exists(dir.file("m.csv"))) << row;
   }
@@ -197,8 +197,8 @@ TEST(DataSafety, DeepNestingIsOneErrorLineNotACrash) {
                  "deep dotted key");
   expect_refused(run_flag_sim({"validate", "array.toml"}, dir.path()),
                  "array.toml:1: nesting deeper than 64", "deep array");
-  expect_refused(run_flag_sim({"run", "--set", "wind.velocity=" + std::string(50000, '[') +
-                                                   std::string(50000, ']'),
+  expect_refused(run_flag_sim({"run", "--set",
+                               "wind.velocity=" + std::string(50000, '[') + std::string(50000, ']'),
                                "--frames", "1", "-o", "x.h5"},
                               dir.path()),
                  "nesting deeper than 64", "deep --set");

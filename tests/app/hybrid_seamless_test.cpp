@@ -64,7 +64,9 @@ void expect_stretch_follows_the_coarse(const data::OutputReader& reader) {
     const std::vector<Vec3> x = reader.positions(t), c = reader.coarse_positions(t);
     const auto coarse_stretch = [&](int jc, int kc, int djc, int dkc, double rest) {
       return (c[std::size_t((jc + djc) * kc_count + kc + dkc)] - c[std::size_t(jc * kc_count + kc)])
-                     .norm() / rest - 1.0;
+                     .norm() /
+                 rest -
+             1.0;
     };
     double worst_excess = -1.0;
     for (int j = 0; j < lattice.rows; ++j)
@@ -72,16 +74,20 @@ void expect_stretch_follows_the_coarse(const data::OutputReader& reader) {
         const int jc = std::min(j / rs, jc_count - 2), kc = std::min(k / cs, kc_count - 2);
         const Vec3& p = x[lattice.index(j, k)];
         if (k + 1 < lattice.cols) {
-          const double allowed = std::max({0.01, coarse_stretch(jc, kc, 0, 1, cs * lattice.spacing_x_m),
-                                           coarse_stretch(jc + 1, kc, 0, 1, cs * lattice.spacing_x_m)});
-          worst_excess = std::max(worst_excess, (x[lattice.index(j, k + 1)] - p).norm() /
-                                                        lattice.spacing_x_m - 1.0 - allowed);
+          const double allowed =
+              std::max({0.01, coarse_stretch(jc, kc, 0, 1, cs * lattice.spacing_x_m),
+                        coarse_stretch(jc + 1, kc, 0, 1, cs * lattice.spacing_x_m)});
+          worst_excess =
+              std::max(worst_excess, (x[lattice.index(j, k + 1)] - p).norm() / lattice.spacing_x_m -
+                                         1.0 - allowed);
         }
         if (j + 1 < lattice.rows) {
-          const double allowed = std::max({0.01, coarse_stretch(jc, kc, 1, 0, rs * lattice.spacing_y_m),
-                                           coarse_stretch(jc, kc + 1, 1, 0, rs * lattice.spacing_y_m)});
-          worst_excess = std::max(worst_excess, (x[lattice.index(j + 1, k)] - p).norm() /
-                                                        lattice.spacing_y_m - 1.0 - allowed);
+          const double allowed =
+              std::max({0.01, coarse_stretch(jc, kc, 1, 0, rs * lattice.spacing_y_m),
+                        coarse_stretch(jc, kc + 1, 1, 0, rs * lattice.spacing_y_m)});
+          worst_excess =
+              std::max(worst_excess, (x[lattice.index(j + 1, k)] - p).norm() / lattice.spacing_y_m -
+                                         1.0 - allowed);
         }
       }
     EXPECT_LE(worst_excess, 0.005) << "frame " << t;
@@ -117,11 +123,11 @@ class HybridShapes : public testing::TestWithParam<Combination> {};
 TEST_P(HybridShapes, HaveNoImprint) {
   const Combination& c = GetParam();
   TempDir dir;
-  const ProcessResult result = run_flag_sim(
-      {"run", "--quiet", "--frames", "91", "--set", std::string("flag.fine=") + c.fine, "--set",
-       std::string("flag.coarse=") + c.coarse, "--set", std::string("flag.size=") + c.size, "-o",
-       "s.h5"},
-      dir.path());
+  const ProcessResult result =
+      run_flag_sim({"run", "--quiet", "--frames", "91", "--set", std::string("flag.fine=") + c.fine,
+                    "--set", std::string("flag.coarse=") + c.coarse, "--set",
+                    std::string("flag.size=") + c.size, "-o", "s.h5"},
+                   dir.path());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const data::OutputReader reader(dir.file("s.h5"));
   for (double strain : reader.stat("max_strain")) EXPECT_LE(strain, 0.01);

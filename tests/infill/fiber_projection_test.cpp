@@ -66,9 +66,10 @@ TEST(FiberProjection, ConvergesQuadraticallyOnOneFiber) {
   auto row_error = [&] {
     double worst = 0.0;
     for (int k = 0; k < 40; ++k)
-      worst = std::max(worst, std::abs((x[lattice.index(0, k + 1)] - x[lattice.index(0, k)]).norm() /
-                                           lattice.spacing_x_m -
-                                       1.0));
+      worst =
+          std::max(worst, std::abs((x[lattice.index(0, k + 1)] - x[lattice.index(0, k)]).norm() /
+                                       lattice.spacing_x_m -
+                                   1.0));
     return worst;
   };
   const double before = row_error();

@@ -26,7 +26,8 @@ struct FlagCells {
 TEST(SmoothInfill, ARigidMotionOfTheCoarseNodesMovesTheClothRigidly) {
   const FlagCells s;
   SmoothInfill infill(s.fine, s.grid);
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   const Vec3 shift(0.3, -0.2, 0.5);
   const auto rigid = [&](const Vec3& p) { return Vec3(turn * p + shift); };
   std::vector<Vec3> dense = s.fine.rest_positions();
@@ -75,15 +76,18 @@ TEST(SmoothInfill, FollowsTheCoarseStretchUpToTheCap) {
     const FlagCells s;
     SmoothInfill infill(s.fine, s.grid);
     std::vector<Vec3> dense = s.fine.rest_positions();
-    infill.fill(s.coarse_of([&](const Vec3& p) { return Vec3((1 + stretch) * p.x(), p.y(), p.z()); }),
-                dense, nullptr);
+    infill.fill(
+        s.coarse_of([&](const Vec3& p) { return Vec3((1 + stretch) * p.x(), p.y(), p.z()); }),
+        dense, nullptr);
     ASSERT_TRUE(infill.last_report().converged) << stretch;
     double longest = 0.0;
     for (int j = 0; j < s.fine.rows; ++j)
       for (int k = 0; k + 1 < s.fine.cols; ++k)
-        longest = std::max(longest, (dense[s.fine.index(j, k + 1)] - dense[s.fine.index(j, k)]).norm() /
-                                        s.fine.spacing_x_m);
-    EXPECT_NEAR(longest - 1.0, std::min(stretch, kStretchCap), kProjectionTolerance + 1e-9) << stretch;
+        longest =
+            std::max(longest, (dense[s.fine.index(j, k + 1)] - dense[s.fine.index(j, k)]).norm() /
+                                  s.fine.spacing_x_m);
+    EXPECT_NEAR(longest - 1.0, std::min(stretch, kStretchCap), kProjectionTolerance + 1e-9)
+        << stretch;
   }
 }
 
@@ -141,7 +145,8 @@ TEST(SmoothInfillWrinkles, WavesSpanTheWholeFiberAndGrowAsTheFiberRadiusSquared)
     wavelength.push_back(std::log(2.0 * kChord / m));
   }
   // Least-squares slope of log wavelength against log r: 2 +- 0.5 (m is rounded).
-  const double mr = (radius[0] + radius[1] + radius[2]) / 3, mw = (wavelength[0] + wavelength[1] + wavelength[2]) / 3;
+  const double mr = (radius[0] + radius[1] + radius[2]) / 3,
+               mw = (wavelength[0] + wavelength[1] + wavelength[2]) / 3;
   double sxy = 0, sxx = 0;
   for (int i = 0; i < 3; ++i) {
     sxy += (radius[i] - mr) * (wavelength[i] - mw);

@@ -49,14 +49,13 @@ struct LinkBand {
 
 /// How a projection ended.
 struct ProjectionReport {
-  int rounds = 0;             ///< row-then-column rounds made
-  int fiber_steps = 0;        ///< Gauss-Newton steps over all fibers
+  int rounds = 0;       ///< row-then-column rounds made
+  int fiber_steps = 0;  ///< Gauss-Newton steps over all fibers
   /// Largest relative distance of a link outside its band, after; measured
   /// only when not converged (0 otherwise: every link is within tolerance).
   double worst_excess = 0.0;
-  bool converged = false;     ///< worst_excess <= the tolerance
+  bool converged = false;  ///< worst_excess <= the tolerance
 };
-
 
 /// Levenberg-Marquardt damping added to the tridiagonal system's diagonal
 /// (whose entries are 1 or 2): keeps it regular where a straight fiber held
@@ -97,19 +96,20 @@ class FiberProjection {
   /// One family (rows or columns): a round over its fibers. Returns whether
   /// any fiber had a link outside its band by more than the tolerance.
   bool project_family(bool rows, std::span<Vec3> positions_m, double tolerance, int steps,
-                        int* steps_made);
+                      int* steps_made);
   /// Gauss-Newton steps on the kLanes fibers gathered in the lane buffers.
   void step_lanes(int links, double rest_m, double tolerance, int steps, int* steps_made);
 
   Lattice lattice_;
   std::vector<double> inverse_mass_;  ///< [J*K]
   std::vector<LinkBand> row_bands_, col_bands_;
-  std::vector<int> active_;  ///< fibers of the family being worked on that need a step
+  std::vector<int> active_;               ///< fibers of the family being worked on that need a step
   std::vector<std::uint8_t> fiber_flag_;  ///< each fiber: a link out of bounds, in the check
   std::vector<double> row_low2_, row_high2_, col_low2_, col_high2_;  ///< bounds with tolerance, m^2
   // Lane buffers, [node or link][lane]: positions, inverse masses, bands, link
   // directions, the tridiagonal system and the step.
-  std::vector<double> x_, y_, z_, w_, lower_, upper_, nx_, ny_, nz_, diag_, off_, rhs_, dx_, dy_, dz_;
+  std::vector<double> x_, y_, z_, w_, lower_, upper_, nx_, ny_, nz_, diag_, off_, rhs_, dx_, dy_,
+      dz_;
 };
 
 }  // namespace flagsim::infill

@@ -63,8 +63,8 @@ namespace flagsim::infill {
 /// its rest length, as the paper solver's 3.4 tolerance.
 inline constexpr double kBand = 0.005;
 /// Most stretch a dense link follows from the coarse physics (relative): the
-/// 1% bound on fibers (property 1), less kProjectionTolerance and a margin. A coarse link the physics stretched more
-/// (the 9 x 13 default reaches 1.3% in gusts) gets dense links at this
+/// 1% bound on fibers (property 1), less kProjectionTolerance and a margin. A coarse link the
+/// physics stretched more (the 9 x 13 default reaches 1.3% in gusts) gets dense links at this
 /// length, and its nodes' dense counterparts move closer together.
 inline constexpr double kStretchCap = 0.009;
 /// The projection stops when no link is outside its band by more than this.

@@ -22,9 +22,8 @@
 // quintic (its overshoots are larger).
 // The surface is linear in the coarse nodes: dense_d = R X_d C^T for each
 // coordinate d, with R [J x Jc] and C [K x Kc] built once.
-#include <span>
-
 #include <Eigen/Core>
+#include <span>
 
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/infill/cell_grid.hpp"
@@ -51,8 +50,8 @@ class SplineSurface {
 
  private:
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  Eigen::MatrixXd rows_;  ///< R [J x Jc]
-  RowMajor cols_t_;       ///< C^T [Kc x K]
+  Eigen::MatrixXd rows_;            ///< R [J x Jc]
+  RowMajor cols_t_;                 ///< C^T [Kc x K]
   RowMajor coarse_, half_, dense_;  ///< work buffers: X_d [Jc x Kc], X_d C^T, R X_d C^T
 };
 
