@@ -14,7 +14,7 @@ struct RunOptions {
   std::string output_path;                    ///< -o; empty: output.file, else out/<name>.h5
   std::optional<std::string> mode;            ///< --mode
   std::optional<long long> frames;            ///< --frames
-  std::optional<long long> seed;              ///< --seed
+  std::optional<std::string> seed;            ///< --seed, as typed (checked by run)
   std::vector<std::string> sets;              ///< --set KEY=VALUE
   std::string render;                         ///< --render OUT.mp4|DIR
   std::optional<std::string> render_size;     ///< --size WxH

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -27,7 +28,17 @@ namespace {
 std::vector<std::string> overrides_of(const RunOptions& options) {
   std::vector<std::string> overrides = options.sets;
   if (options.mode) overrides.push_back(fmt::format("scene.mode=\"{}\"", *options.mode));
-  if (options.seed) overrides.push_back(fmt::format("scene.seed={}", *options.seed));
+  if (options.seed) {
+    // As typed, not through a fixed-width parse that would clamp 2^64 - 1 to 2^63 - 1.
+    const std::string& seed = *options.seed;
+    const bool digits =
+        !seed.empty() && seed.size() <= 19 &&
+        std::all_of(seed.begin(), seed.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits || (seed.size() == 19 && seed > "9223372036854775807"))
+      throw UserError(fmt::format("--seed {}: expected an integer from 0 to 9223372036854775807",
+                                  printable(seed)));
+    overrides.push_back(fmt::format("scene.seed={}", seed));
+  }
   if (options.frames) overrides.push_back(fmt::format("scene.frames={}", *options.frames));
   return overrides;
 }

@@ -299,7 +299,16 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
       lines = run_points(o, grid, {*o.point});
     } else if (o.jobs > 1) {
       const fs::path dir = fs::path(o.output).string() + ".points";
-      fs::create_directories(dir);
+      std::error_code ec;
+      // The workers' directory is the sweep's own: never a file or folder already there.
+      if (fs::exists(fs::symlink_status(dir, ec)))
+        throw UserError(
+            fmt::format("{}: exists; sweep --jobs writes its points there (remove it "
+                        "or choose another -o)",
+                        dir.string()));
+      if (!fs::create_directories(dir, ec))
+        throw IoError(
+            fmt::format("{}: cannot create the points directory: {}", dir.string(), ec.message()));
       lines = run_children(argv, count, o.jobs, dir);
       fs::remove_all(dir);
     } else {

@@ -159,7 +159,7 @@ const std::vector<BadInput>& cases() {
       {"negative_seed",
        kBase,
        {"run", "SCENE", "--seed", "-1"},
-       "scene.seed: expected an integer in [0,"},
+       "--seed -1: expected an integer from 0 to 9223372036854775807"},
       {"zero_frames",
        kBase,
        {"run", "SCENE", "--frames", "0"},

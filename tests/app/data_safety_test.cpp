@@ -254,3 +254,33 @@ TEST(DataSafety, PhysicalValuesNoRealSceneNeedsAreRefusedWithTheirRange) {
 
 }  // namespace
 }  // namespace flagsim::test
+
+namespace flagsim::test {
+namespace {
+
+TEST(DataSafety, ASeedIsTakenAsTypedOrRefused) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  for (const char* seed : {"18446744073709551615", "9223372036854775808", "-1", "12x", ""})
+    expect_refused(run_flag_sim({"run", "s.toml", "--seed", seed, "-o", "x.h5"}, dir.path()),
+                   "expected an integer from 0 to 9223372036854775807", seed);
+  EXPECT_EQ(dir.entry_count(), 1);
+  const ProcessResult largest = run_flag_sim(
+      {"run", "s.toml", "--seed", "9223372036854775807", "-o", "x.h5", "--quiet"}, dir.path());
+  EXPECT_EQ(largest.exit_code, 0) << largest.err;
+}
+
+TEST(DataSafety, ASweepNeverTakesAPointsPathThatIsAlreadyThere) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  dir.write("out.csv.points", "a user's file\n");
+  expect_refused(
+      run_flag_sim({"sweep", "s.toml", "--coarse", "9x13", "--jobs", "2", "-o", "out.csv"},
+                   dir.path()),
+      "out.csv.points: exists", "points path is a file");
+  EXPECT_EQ(read(dir.file("out.csv.points")), "a user's file\n");
+  EXPECT_FALSE(fs::exists(dir.file("out.csv")));
+}
+
+}  // namespace
+}  // namespace flagsim::test
