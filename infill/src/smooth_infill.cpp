@@ -17,8 +17,8 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
       coarse_row_stretch_(std::size_t(grid.coarse_rows) * std::size_t(grid.coarse_cols - 1)),
       coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)),
       wrinkles_(wrinkles) {
+  surface_.resize(fine.node_count());
   if (wrinkles_) {
-    surface_.resize(fine.node_count());
     normals_.resize(fine.node_count());
     last_offset_.assign(fine.node_count(), 0.0);
     wave_.resize(std::size_t(std::max(fine.rows, fine.cols)));
@@ -33,7 +33,6 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
         CellGrid{grid.coarse_rows, grid.coarse_cols, grid.row_stride / 2, grid.col_stride / 2},
         wrinkles);
     coarser_positions_.resize(half.node_count());
-    coarser_surface_.resize(half.node_count());
   }
 }
 
@@ -41,7 +40,7 @@ void SmoothInfill::add_coarser_offsets(std::span<Vec3> positions_m) {
   const Lattice& half = coarser_->lattice_;
   const auto offset = [&](int j, int k) {
     const std::size_t i = half.index(j, k);
-    return Vec3(coarser_positions_[i] - coarser_surface_[i]);
+    return Vec3(coarser_positions_[i] - coarser_->surface_[i]);
   };
   for (int j = 0; j < lattice_.rows; ++j)
     for (int k = 0; k < lattice_.cols; ++k) {
@@ -158,12 +157,10 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
                         StageTimes* times) {
   assert(coarse_m.size() == grid_.coarse_count() && positions_m.size() == lattice_.node_count());
   if (coarser_)  // part of 3.4: the coarser levels' projections start this one's
-    run_timed(times, stage_[2], [&] {
-      coarser_->fill(coarse_m, coarser_positions_, nullptr);
-      coarser_->spline_.evaluate(coarse_m, coarser_surface_);
-    });
-  run_timed(times, stage_[0], [&] {  // 3.1-3.2
-    spline_.evaluate(coarse_m, positions_m);
+    run_timed(times, stage_[2], [&] { coarser_->fill(coarse_m, coarser_positions_, nullptr); });
+  run_timed(times, stage_[0], [&] {  // 3.1-3.2: the surface, kept for the level above and 3.5
+    spline_.evaluate(coarse_m, surface_);
+    std::copy(surface_.begin(), surface_.end(), positions_m.begin());
     if (coarser_) add_coarser_offsets(positions_m);
   });
   run_timed(times, stage_[1], [&] { set_bands(coarse_m); });  // 3.3
@@ -174,10 +171,7 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   };
   run_timed(times, stage_[2], relax);
   if (wrinkles_) {
-    run_timed(times, stage_[3], [&] {
-      spline_.evaluate(coarse_m, surface_);
-      add_wrinkles(positions_m);
-    });
+    run_timed(times, stage_[3], [&] { add_wrinkles(positions_m); });
     run_timed(times, stage_[2], relax);
     for (std::size_t i = 0; i < positions_m.size(); ++i)
       last_offset_[i] = (positions_m[i] - surface_[i]).dot(normals_[i]);

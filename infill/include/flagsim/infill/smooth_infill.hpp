@@ -110,16 +110,17 @@ class SmoothInfill final : public InfillMethod {
 
   int stage_[4] = {-1, -1, -1, -1};
   std::optional<WrinkleParams> wrinkles_;
-  std::vector<Vec3> surface_, normals_;  ///< 3.5: this frame's mean surface and its normals
-  std::vector<double> last_offset_;      ///< 3.5: last frame's offset along its normal, m
-  std::vector<double> wave_;             ///< 3.5: one fiber's wave, work buffer
+  std::vector<Vec3> surface_;  ///< this frame's mean surface (3.1), read by 3.5 and the level above
+  std::vector<Vec3> normals_;  ///< 3.5: the surface's normals
+  std::vector<double> last_offset_;  ///< 3.5: last frame's offset along its normal, m
+  std::vector<double> wave_;         ///< 3.5: one fiber's wave, work buffer
   FillReport report_;
 
   // The same infill on the lattice of every other dense row and column, when
   // that still has at least kLevelStride links per cell side: its converged
   // offsets from the surface start this level's projection.
   std::unique_ptr<SmoothInfill> coarser_;
-  std::vector<Vec3> coarser_positions_, coarser_surface_;
+  std::vector<Vec3> coarser_positions_;  ///< the coarser level's result
 };
 
 }  // namespace flagsim::infill
