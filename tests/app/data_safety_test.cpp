@@ -33,6 +33,15 @@ std::string read(const std::string& path) {
   return text.str();
 }
 
+// Runs point `point` of a one-lattice sweep of s.toml into p<point>.csv.
+void write_point_csv(const TempDir& dir, const std::string& point) {
+  ASSERT_EQ(run_flag_sim({"sweep", "s.toml", "--coarse", "9x13", "--point", point, "-o",
+                          "p" + point + ".csv", "--quiet"},
+                         dir.path())
+                .exit_code,
+            0);
+}
+
 // One error line, exit 2.
 void expect_refused(const ProcessResult& r, const std::string& words, const std::string& what) {
   EXPECT_EQ(r.exit_code, 2) << what << "\n" << r.err;
@@ -132,12 +141,7 @@ TEST(DataSafety, HelperProgramsGetPathsAsArgumentsNotThroughAShell) {
   dir.write("s.toml", kTiny);
   // Two real point CSVs (a reference and a hybrid: the plot needs an error
   // above 0), then a merge whose output paths are shell syntax.
-  for (const char* point : {"0", "2"})
-    ASSERT_EQ(run_flag_sim({"sweep", "s.toml", "--coarse", "9x13", "--point", point, "-o",
-                            std::string("p") + point + ".csv", "--quiet"},
-                           dir.path())
-                  .exit_code,
-              0);
+  for (const char* point : {"0", "2"}) ASSERT_NO_FATAL_FAILURE(write_point_csv(dir, point));
   const std::string hostile = "x';touch INJECTED;'.csv";
   const ProcessResult merged = run_flag_sim({"sweep", "--merge", "p0.csv", "p2.csv", "-o", hostile,
                                              "--plot", "p'$(touch INJECTED2)'.png"},
@@ -149,20 +153,10 @@ TEST(DataSafety, HelperProgramsGetPathsAsArgumentsNotThroughAShell) {
   EXPECT_FALSE(fs::exists(dir.file("INJECTED2")));
 }
 
-}  // namespace
-}  // namespace flagsim::test
-
-namespace flagsim::test {
-namespace {
-
 TEST(DataSafety, MergeRowsThatAreNotSweepRowsAreOneErrorLine) {
   TempDir dir;
   dir.write("s.toml", kTiny);
-  ASSERT_EQ(run_flag_sim(
-                {"sweep", "s.toml", "--coarse", "9x13", "--point", "0", "-o", "p0.csv", "--quiet"},
-                dir.path())
-                .exit_code,
-            0);
+  ASSERT_NO_FATAL_FAILURE(write_point_csv(dir, "0"));
   const std::string good = read(dir.file("p0.csv"));
   const std::string header = good.substr(0, good.find('\n') + 1);
   for (const char* row : {"abc,def", "99999999999,x", "-5,x", "7", " 3 ,x"}) {
@@ -173,12 +167,6 @@ TEST(DataSafety, MergeRowsThatAreNotSweepRowsAreOneErrorLine) {
     EXPECT_FALSE(fs::exists(dir.file("m.csv"))) << row;
   }
 }
-
-}  // namespace
-}  // namespace flagsim::test
-
-namespace flagsim::test {
-namespace {
 
 TEST(DataSafety, DeepNestingIsOneErrorLineNotACrash) {
   TempDir dir;
@@ -226,12 +214,6 @@ TEST(DataSafety, OnlyRegularFilesAreReadAsScenes) {
                  "more than a scene file can be", "2 MiB scene");
 }
 
-}  // namespace
-}  // namespace flagsim::test
-
-namespace flagsim::test {
-namespace {
-
 TEST(DataSafety, PhysicalValuesNoRealSceneNeedsAreRefusedWithTheirRange) {
   TempDir dir;
   dir.write("s.toml", kTiny);
@@ -251,12 +233,6 @@ TEST(DataSafety, PhysicalValuesNoRealSceneNeedsAreRefusedWithTheirRange) {
   }
   EXPECT_EQ(dir.entry_count(), 1);
 }
-
-}  // namespace
-}  // namespace flagsim::test
-
-namespace flagsim::test {
-namespace {
 
 TEST(DataSafety, ASeedIsTakenAsTypedOrRefused) {
   TempDir dir;

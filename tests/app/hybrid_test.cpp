@@ -132,12 +132,6 @@ TEST(Hybrid, TakesInfillAndWrinkleSettings) {
   EXPECT_EQ(stages[stages.size() - 3], "infill_3.5");
 }
 
-}  // namespace
-}  // namespace flagsim::test
-
-namespace flagsim::test {
-namespace {
-
 TEST(Hybrid, OnlyTheStagesTheSceneCallsFor) {
   // No [wind], no [wrinkles]: no wind stage, no step 3.5, with either backend.
   TempDir dir;
@@ -178,12 +172,6 @@ TEST(Bullet, FullLatticeModeRunsAndRecordsItsStepping) {
   EXPECT_TRUE(reader.coarse_positions(0).empty());  // no /coarse group on the full lattice
   for (double strain : reader.stat("max_strain")) EXPECT_LT(strain, 0.1);
 }
-
-}  // namespace
-}  // namespace flagsim::test
-
-namespace flagsim::test {
-namespace {
 
 TEST(Hybrid, SaysWhenTheWrinklesAskedForAreFinerThanTheLattice) {
   TempDir dir;

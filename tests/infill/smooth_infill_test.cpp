@@ -91,12 +91,6 @@ TEST(SmoothInfill, FollowsTheCoarseStretchUpToTheCap) {
   }
 }
 
-}  // namespace
-}  // namespace flagsim::infill
-
-namespace flagsim::infill {
-namespace {
-
 // A cloth whose corners are pushed 3% together along its rows (the paper's
 // Figs. 9-10 case): the mean surface is the shrunk plane, every row has 3%
 // of slack, and 3.5 lays waves across the whole row.
