@@ -2,10 +2,12 @@
 // The flag-sim subcommands. Each returns the process exit code (contract:
 // "Exit codes"); user mistakes are thrown as UserError and reported by main.
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "flagsim/core/scene.hpp"
+#include "flagsim/core/scene_parser.hpp"
 
 namespace flagsim::app {
 
@@ -24,6 +26,7 @@ struct RunOptions {
 };
 
 /// Reads the scene a command names (or the default one), with the overrides.
+Scene load_scene(const std::string& scene_path, std::span<const Override> overrides);
 Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides);
 
 int run_command(const RunOptions& options);

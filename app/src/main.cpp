@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/message.hpp"
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "render_command.hpp"
@@ -14,7 +15,7 @@ namespace {
 using flagsim::ExitCode;
 
 int fail(ExitCode code, const std::string& message) {
-  fmt::print(stderr, "error: {}\n", message);
+  fmt::print(stderr, "error: {}\n", flagsim::one_line(message));
   return int(code);
 }
 
@@ -122,7 +123,7 @@ int main(int argc, char** argv) {
   } catch (const flagsim::IoError& e) {
     return fail(ExitCode::kIoFailure, e.what());
   } catch (const flagsim::Interrupted& e) {
-    fmt::print(stderr, "interrupted: {}\n", e.what());
+    fmt::print(stderr, "interrupted: {}\n", flagsim::one_line(e.what()));
     return int(ExitCode::kInterrupted);
   } catch (const std::bad_alloc&) {
     return fail(ExitCode::kBadInput,

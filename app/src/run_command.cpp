@@ -25,9 +25,12 @@
 namespace flagsim::app {
 namespace {
 
-std::vector<std::string> overrides_of(const RunOptions& options) {
-  std::vector<std::string> overrides = options.sets;
-  if (options.mode) overrides.push_back(fmt::format("scene.mode=\"{}\"", *options.mode));
+// The scene keys run's own flags set, each quoted as the user typed it.
+std::vector<Override> overrides_of(const RunOptions& options) {
+  std::vector<Override> overrides = set_overrides(options.sets);
+  if (options.mode)
+    overrides.push_back({fmt::format("scene.mode={}", toml_string(*options.mode)),
+                         "--mode " + *options.mode});
   if (options.seed) {
     // As typed, not through a fixed-width parse that would clamp 2^64 - 1 to 2^63 - 1.
     const std::string& seed = *options.seed;
@@ -37,9 +40,11 @@ std::vector<std::string> overrides_of(const RunOptions& options) {
     if (!digits || (seed.size() == 19 && seed > "9223372036854775807"))
       throw UserError(fmt::format("--seed {}: expected an integer from 0 to 9223372036854775807",
                                   printable(seed)));
-    overrides.push_back(fmt::format("scene.seed={}", seed));
+    overrides.push_back({fmt::format("scene.seed={}", seed), "--seed " + seed});
   }
-  if (options.frames) overrides.push_back(fmt::format("scene.frames={}", *options.frames));
+  if (options.frames)
+    overrides.push_back({fmt::format("scene.frames={}", *options.frames),
+                         fmt::format("--frames {}", *options.frames)});
   return overrides;
 }
 
@@ -138,7 +143,7 @@ int run_command(const RunOptions& options) {
     {
       ScopedStageTimer timer(times, checks_stage);
       strain = link_strain(lattice, positions);
-      if (auto why = divergence_reason(positions, simulation->velocities(), strain, scene.limits)) {
+      if (auto why = hybrid::frame_divergence(*simulation, scene, strain)) {
         status = "diverged";
         reason = fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
       }

@@ -33,17 +33,14 @@ void average_times(RunRecord& record) {
   record.infill_ms /= n;
 }
 
-// Checks a frame as the run loop does; false (and the reason) when it diverged.
-bool frame_is_good(RunRecord& record, const Scene& scene, std::span<const Vec3> x,
-                   std::span<const Vec3> v, int frame) {
-  const StrainStats strain = link_strain(record.lattice, x);
-  if (auto why = divergence_reason(x, v, strain, scene.limits)) {
-    record.status = "diverged";
-    record.status_reason =
-        fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
-    return false;
-  }
-  return true;
+// Records why frame `frame` cannot be trusted, if it cannot (`why`, as the run
+// loop computes it); false then.
+bool frame_is_good(RunRecord& record, const Scene& scene, const std::optional<std::string>& why,
+                   int frame) {
+  if (!why) return true;
+  record.status = "diverged";
+  record.status_reason = fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
+  return false;
 }
 
 }  // namespace
@@ -62,7 +59,8 @@ RunRecord record_run(const Scene& scene) {
   for (int frame = 0; frame < frames; ++frame) {
     times.reset();
     if (frame > 0) simulation->advance_frame(&times);
-    if (!frame_is_good(record, scene, simulation->positions(), simulation->velocities(), frame))
+    const StrainStats strain = link_strain(record.lattice, simulation->positions());
+    if (!frame_is_good(record, scene, hybrid::frame_divergence(*simulation, scene, strain), frame))
       break;
     if (frame > 0) add_times(record, times);
     record.frames.emplace_back(simulation->positions().begin(), simulation->positions().end());
@@ -105,7 +103,10 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid) {
   for (int frame = 0; frame < frames; ++frame) {
     times.reset();
     if (frame > 0) solver.advance_frame(state, &times);
-    if (!frame_is_good(record, full, state.x_m, state.v_m_s, frame)) break;
+    const StrainStats strain = link_strain(record.lattice, state.x_m);
+    if (!frame_is_good(record, full, divergence_reason(state.x_m, state.v_m_s, strain, full.limits),
+                       frame))
+      break;
     if (frame > 0) add_times(record, times);
     record.frames.push_back(state.x_m);
   }

@@ -8,13 +8,17 @@
 
 namespace flagsim::app {
 
-Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides) {
+Scene load_scene(const std::string& scene_path, std::span<const Override> overrides) {
   if (scene_path.empty()) return parse_scene(default_scene_toml(), kDefaultSceneName, overrides);
   return load_scene_file(scene_path, overrides);
 }
 
+Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides) {
+  return load_scene(scene_path, set_overrides(overrides));
+}
+
 int validate_command(const std::string& scene_path) {
-  const Scene scene = load_scene(scene_path, {});
+  const Scene scene = load_scene(scene_path, std::span<const Override>{});
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   std::string stepping;
   for (const auto& [name, value] : simulation->numbers())

@@ -58,11 +58,4 @@ void check_file_name_part(const std::string& name, const std::string& what) {
         what));
 }
 
-std::string printable(const std::string& text, std::size_t limit) {
-  std::string out;
-  for (unsigned char c : text.substr(0, limit))
-    out += c < 0x20 || c == 0x7f ? fmt::format("\\x{:02x}", c) : std::string(1, char(c));
-  return text.size() > limit ? out + "..." : out;
-}
-
 }  // namespace flagsim

@@ -3,12 +3,13 @@
 #include <fmt/format.h>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/limits.hpp"
 
 namespace flagsim::detail {
 namespace {
 
 // 2^24 nodes: ~400 MB per double state vector, far past any lattice we mean to run.
-constexpr double kMaxNodes = 16'777'216.0;
+constexpr double kMaxNodes = double(limits::kLatticeNodes);
 
 [[noreturn]] void fail_at(const TableReader& root, std::string_view dotted,
                           const std::string& message) {

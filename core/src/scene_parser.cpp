@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/limits.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "scene_checks.hpp"
 #include "toml_reader.hpp"
@@ -21,8 +22,8 @@ using detail::TableReader;
 
 // Largest lattice side and node count accepted: a 8193 x 8193 lattice already
 // needs ~1.6 GB per state vector; past this a typo is far likelier than intent.
-constexpr long long kMaxLatticeSide = 8193;
-constexpr long long kMaxFrames = 10'000'000;
+constexpr long long kMaxLatticeSide = limits::kLatticeSide;
+constexpr long long kMaxFrames = limits::kFrames;
 
 // Every key of the schema, for "did you mean" across tables.
 constexpr std::string_view kAllKeys[] = {"scene.name",
@@ -140,14 +141,17 @@ void check_nesting(std::string_view text, std::string_view source) {
   }
 }
 
-std::string apply_override(toml::table& root, const std::string& assignment) {
-  const std::string label = "--set " + assignment;
+std::string apply_override(toml::table& root, const Override& override) {
+  const std::string& assignment = override.assignment;
+  const std::string label = printable(override.typed, limits::kMessageBytes / 2);
+  if (assignment.find_first_of("\n\r") != std::string::npos)
+    throw UserError(label + ": a value must be on one line (it holds a line break)");
   const auto equals = assignment.find('=');
   if (equals == std::string::npos || trim(assignment.substr(0, equals)).empty())
     throw UserError(label + ": expected KEY=VALUE with a TOML value, e.g. --set flag.fine=[65,97]");
   const std::string key = trim(assignment.substr(0, equals));
   const std::string value = trim(assignment.substr(equals + 1));
-  check_nesting(key + " = " + value, printable(label));
+  check_nesting(key + " = " + value, label);
   toml::table patch;
   try {
     patch = toml::parse(key + " = " + value, label);
@@ -184,7 +188,7 @@ void read_scene_table(TableReader& in, Scene& scene, std::string_view source_pat
   scene.name = in.string("name", stem.empty() ? "scene" : stem);
   scene.mode =
       parse_mode(in.choice("mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "infill"}));
-  scene.fps = in.real("fps", 30.0, Bound{0.0, 10000.0, true}, "frames per second");
+  scene.fps = in.real("fps", 30.0, Bound{0.0, limits::kFps, true}, "frames per second");
   scene.duration_s = in.real("duration", 10.0, Bound{0.0, 1.0e6, true}, "s");
   if (auto frames = in.optional_integer("frames", 1, kMaxFrames))
     scene.duration_s = double(*frames - 1) / scene.fps;  // extension key, set by --frames
@@ -199,7 +203,7 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
       in.real_pair("size", {flag.width_m, flag.height_m}, Bound{0.0, 1.0e3, true}, "[w, h] in m");
   flag.width_m = size[0];
   flag.height_m = size[1];
-  flag.origin_m = in.vec3("origin", flag.origin_m, "m");
+  flag.origin_m = in.vec3("origin", flag.origin_m, "m", limits::kCoordinate_m);
   if (auto fine = in.int_pair("fine", 2, kMaxLatticeSide, "[J, K] nodes")) {
     flag.fine_rows = (*fine)[0];
     flag.fine_cols = (*fine)[1];
@@ -276,6 +280,32 @@ void read_effect_tables(TableReader& root, Scene& scene) {
   }
 }
 
+// Keyframe corners no cloth of the flag's size could span (a typo, or a
+// flag torn apart): the infill would stretch every fiber to reach them and
+// 3.1 would cut the motion into ever more steps. Each pair of corners may be
+// at most kCornerReach times their rest distance apart.
+constexpr double kCornerReach = 1.1;
+
+void check_corner_reach(const TableReader& in, const Keyframe& key, const FlagSpec& flag) {
+  static constexpr const char* kNames[4] = {"(0,0)", "(0,K-1)", "(J-1,0)", "(J-1,K-1)"};
+  const double w = flag.width_m, h = flag.height_m;
+  const double rest[4][4] = {{0.0, w, h, std::hypot(w, h)},
+                             {w, 0.0, std::hypot(w, h), h},
+                             {h, std::hypot(w, h), 0.0, w},
+                             {std::hypot(w, h), h, w, 0.0}};
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      const double apart = (key.corners_m[a] - key.corners_m[b]).norm();
+      if (apart > kCornerReach * rest[a][b])
+        in.fail("corners",
+                fmt::format("corners {} and {} are {:.4g} m apart, but the {:.4g} x {:.4g} m flag "
+                            "spans only {:.4g} m between them (at most {:.4g} m with {:.0f}% "
+                            "stretch)",
+                            kNames[a], kNames[b], apart, w, h, rest[a][b],
+                            kCornerReach * rest[a][b], (kCornerReach - 1.0) * 100.0));
+    }
+}
+
 void read_infill_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("wrinkles")) {
     TableReader in(*t, "wrinkles", root.where_of("wrinkles"));
@@ -316,12 +346,9 @@ void read_infill_tables(TableReader& root, Scene& scene) {
         in.fail(
             "corners",
             "expected 4 corners [[x,y,z], ...] in the order (0,0), (0,K-1), (J-1,0), (J-1,K-1)");
-      for (int c = 0; c < 4; ++c) {
-        toml::table holder;
-        holder.insert("corner", *array->get(c));
-        TableReader corner(holder, "keyframe.corners", in.where_of("corners"));
-        key.corners_m[c] = corner.vec3("corner", Vec3::Zero(), "m");
-      }
+      for (int c = 0; c < 4; ++c)
+        key.corners_m[c] = in.vec3_item("corners", *array->get(c), "m", limits::kCoordinate_m);
+      check_corner_reach(in, key, scene.flag);
       in.finish(kAllKeys);
       if (!scene.keyframes.empty() && key.time_s <= scene.keyframes.back().time_s)
         in.fail("time", fmt::format("keyframes must be in increasing time; {} s follows {} s",
@@ -350,7 +377,7 @@ void read_run_tables(TableReader& root, Scene& scene) {
     TableReader in(*t, "render", root.where_of("render"));
     Render render;
     render.style = in.choice("style", "shaded", {"wireframe", "shaded", "textured"});
-    if (auto size = in.int_pair("size", 16, 16384, "[w, h] pixels")) render.size_px = *size;
+    if (auto size = in.int_pair("size", limits::kImageSideMin, limits::kImageSideMax, "[w, h] pixels")) render.size_px = *size;
     render.texture = in.string("texture", "");
     in.finish(kAllKeys);
     scene.render = render;
@@ -394,8 +421,34 @@ Scene build_scene(const toml::table& root, std::string_view source_path) {
 
 }  // namespace
 
+std::string toml_string(std::string_view text) {
+  std::string quoted = "\"";
+  for (const unsigned char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    if (c < 0x20 || c == 0x7f) quoted += fmt::format("\\u{:04x}", c);
+    else quoted += char(c);
+  }
+  return quoted + "\"";
+}
+
+std::vector<Override> set_overrides(std::span<const std::string> assignments) {
+  std::vector<Override> overrides;
+  for (const std::string& assignment : assignments)
+    overrides.push_back({assignment, "--set " + assignment});
+  return overrides;
+}
+
 Scene parse_scene(std::string_view toml_text, std::string_view source_path,
                   std::span<const std::string> overrides) {
+  return parse_scene(toml_text, source_path, set_overrides(overrides));
+}
+
+Scene load_scene_file(const std::string& path, std::span<const std::string> overrides) {
+  return load_scene_file(path, set_overrides(overrides));
+}
+
+Scene parse_scene(std::string_view toml_text, std::string_view source_path,
+                  std::span<const Override> overrides) {
   check_nesting(toml_text, source_path);
   toml::table root;
   try {
@@ -405,13 +458,13 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_path,
         fmt::format("{}: invalid TOML: {}", detail::where(error.source()), error.description()));
   }
   std::vector<std::pair<std::string, std::string>> labels;
-  for (const std::string& assignment : overrides)
-    labels.emplace_back(apply_override(root, assignment), "--set " + assignment);
+  for (const Override& override : overrides)
+    labels.emplace_back(apply_override(root, override), printable(override.typed, 300));
   const detail::OverrideLabels scope(std::move(labels));
   return build_scene(root, source_path);
 }
 
-Scene load_scene_file(const std::string& path, std::span<const std::string> overrides) {
+Scene load_scene_file(const std::string& path, std::span<const Override> overrides) {
   // Only a regular file, and only as much as a scene can be: a FIFO would
   // block, /dev/zero would never end.
   constexpr std::uintmax_t kMaxSceneBytes = 1 << 20;

@@ -15,9 +15,22 @@ std::string describe(const toml::node& node) {
   if (node.is_table()) return "a table";
   if (node.is_floating_point()) return fmt::format("{}", *node.value<double>());  // shortest form
   if (node.is_string()) return fmt::format("\"{}\"", *node.value<std::string>());
+  if (const toml::array* array = node.as_array();
+      array && array->size() <= 8 && array->is_homogeneous<double>()) {
+    std::string text = "[";
+    for (const toml::node& item : *array)
+      text += fmt::format("{}{}", text.size() > 1 ? ", " : "", *item.value<double>());
+    return text + "]";
+  }
   std::ostringstream out;
   node.visit([&out](auto&& value) { out << value; });
-  std::string text = out.str();
+  // toml++ lays arrays out over several lines; an error is one line.
+  std::string text;
+  for (const char c : out.str()) {
+    const bool space = c == '\n' || c == '\r' || c == '\t' || c == ' ';
+    if (!space) text += c;
+    else if (!text.empty() && text.back() != ' ') text += ' ';
+  }
   if (text.size() > 60) text = text.substr(0, 57) + "...";
   return text;
 }
@@ -30,7 +43,7 @@ std::string format_number(double x) {
 
 std::string where(const toml::source_region& source) {
   const std::string path = source.path ? *source.path : std::string("<scene>");
-  if (path.starts_with("--set")) return path;
+  if (path.starts_with("--")) return path;  // a command-line override, quoted as typed
   if (source.begin.line == 0) return path;
   return fmt::format("{}:{}:{}", path, source.begin.line, source.begin.column);
 }
@@ -55,7 +68,11 @@ std::string where_key(const std::string& key, const toml::source_region& source)
     // The last override wins, as it does for the value.
     for (auto it = t_override_labels->rbegin(); it != t_override_labels->rend(); ++it) {
       const std::string& overridden = it->first;
-      if (key == overridden || key.starts_with(overridden + ".")) return it->second;
+      // The key itself, a key inside it, or a table the override reached into
+      // (--set flag.fine.x=1 turns flag.fine into a table).
+      if (key == overridden || key.starts_with(overridden + ".") ||
+          overridden.starts_with(key + "."))
+        return it->second;
     }
   }
   return where(source);
@@ -158,17 +175,27 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
                               guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
 }
 
-Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback, std::string_view unit) {
+Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback, std::string_view unit,
+                       double max_abs) {
   const toml::node* node = lookup(key);
-  if (!node) return fallback;
-  const std::string what = fmt::format("an array of 3 finite numbers [x, y, z] in {}", unit);
-  const toml::array* array = node->as_array();
-  if (!array || array->size() != 3) expected(key, *node, what);
+  return node ? vec3_item(key, *node, unit, max_abs) : fallback;
+}
+
+Vec3 TableReader::vec3_item(std::string_view key, const toml::node& node, std::string_view unit,
+                            double max_abs) const {
+  const std::string what =
+      std::isfinite(max_abs)
+          ? fmt::format("an array of 3 numbers [x, y, z] in {}, each in [{}, {}]", unit,
+                        format_number(-max_abs), format_number(max_abs))
+          : fmt::format("an array of 3 finite numbers [x, y, z] in {}", unit);
+  const toml::array* array = node.as_array();
+  if (!array || array->size() != 3) expected(key, node, what);
   Vec3 v;
   for (int i = 0; i < 3; ++i) {
     const toml::node& item = *array->get(i);
-    if (!item.is_number() || !std::isfinite(*item.value<double>())) expected(key, *node, what);
+    if (!item.is_number()) expected(key, node, what);
     v[i] = *item.value<double>();
+    if (!std::isfinite(v[i]) || std::abs(v[i]) > max_abs) expected(key, node, what);
   }
   return v;
 }

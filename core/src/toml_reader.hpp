@@ -5,6 +5,7 @@
 #include <toml++/toml.h>
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -68,8 +69,13 @@ class TableReader {
   /// One of `choices`; the message lists them and suggests the closest.
   std::string choice(std::string_view key, std::string fallback,
                      std::vector<std::string_view> choices);
-  /// [x, y, z] of finite numbers.
-  Vec3 vec3(std::string_view key, const Vec3& fallback, std::string_view unit);
+  /// [x, y, z] of finite numbers, each of magnitude at most `max_abs`.
+  Vec3 vec3(std::string_view key, const Vec3& fallback, std::string_view unit,
+            double max_abs = std::numeric_limits<double>::infinity());
+  /// `node` (an item of the array at `key`) as such an [x, y, z]; errors
+  /// point at the item itself.
+  Vec3 vec3_item(std::string_view key, const toml::node& node, std::string_view unit,
+                 double max_abs = std::numeric_limits<double>::infinity()) const;
   /// [a, b] of numbers inside `bound`.
   std::array<double, 2> real_pair(std::string_view key, std::array<double, 2> fallback, Bound bound,
                                   std::string_view what);

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
+#include "flagsim/core/divergence.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
 #include "flagsim/infill/infill_method.hpp"
@@ -272,6 +273,23 @@ class HybridSimulation final : public Simulation {
 };
 
 }  // namespace
+
+std::optional<std::string> frame_divergence(const Simulation& simulation, const Scene& scene,
+                                            const StrainStats& strain) {
+  std::optional<std::string> why =
+      divergence_reason(simulation.positions(), simulation.velocities(), strain, scene.limits);
+  const std::optional<infill::FillReport> report = simulation.infill_report();
+  if (!why || !report || report->converged || strain.max <= scene.limits.max_strain) return why;
+  const bool paper = infill_solver_of(scene) == InfillSolverKind::kPaper;
+  return fmt::format(
+      "max link strain {:.3g} exceeds limits.max_strain = {:.3g}, and the infill ({} solver) did "
+      "not reach its tolerance in this frame: the infill failed, not the cloth; {}",
+      strain.max, scene.limits.max_strain, paper ? "paper" : "smooth",
+      paper ? fmt::format("raise infill.relax_iterations (now {}), use [infill] solver = "
+                          "\"smooth\", or give it smaller cells (flag.coarse)",
+                          paper_relax_sweeps_of(scene))
+            : std::string("give it smaller cells (flag.coarse) or a gentler coarse motion"));
+}
 
 std::optional<std::string> wrinkle_resolution_note(const Scene& scene) {
   const std::optional<infill::WrinkleParams> params = wrinkle_params(scene);

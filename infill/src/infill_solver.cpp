@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/infill/boundary.hpp"
 #include "flagsim/infill/initial_move.hpp"
@@ -118,11 +119,12 @@ void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   }
   const double cell_side =
       std::min(grid_.row_stride * lattice_.spacing_y_m, grid_.col_stride * lattice_.spacing_x_m);
-  const int steps = std::max(1, int(std::ceil(largest_motion / (kMaxStepFraction * cell_side))));
+  const double wanted = std::ceil(largest_motion / (kMaxStepFraction * cell_side));
+  const int steps = int(std::clamp(wanted, 1.0, double(kMaxCutSteps)));
   last_steps_ = steps;
   last_sweeps_ = 0;
-  capped_ = false;
-  for (int s = 1; s <= steps; ++s) {
+  capped_ = wanted > kMaxCutSteps;  // steps longer than a cell: not the paper's 3.1
+  for (int s = 1; s <= steps && !stop_requested(); ++s) {
     const double t = double(s) / steps;
     for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
       coarse_step_[c] =

@@ -8,7 +8,7 @@
 namespace flagsim::infill {
 
 int relax_fiber(const Fiber& fiber, std::span<Vec3> positions_m, int max_sweeps, double tolerance) {
-  for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
+  for (int sweep = 1; sweep <= max_sweeps && !stop_requested(); ++sweep) {
     double worst = 0.0;
     for (int i = 0; i < fiber.segments; ++i) {
       worst =

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "flagsim/core/message.hpp"
+
 namespace flagsim {
 
 class FileRoles {
@@ -35,8 +37,5 @@ bool same_file(const std::string& a, const std::string& b);
 /// NUL or other control character, not "." or "..", at most 200 bytes.
 void check_file_name_part(const std::string& name, const std::string& what);
 
-/// `text` for one line of a message: control characters as \xNN, cut to
-/// `limit` bytes with "..." after.
-std::string printable(const std::string& text, std::size_t limit = 80);
 
 }  // namespace flagsim

@@ -4,10 +4,25 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "flagsim/core/scene.hpp"
 
 namespace flagsim {
+
+/// A scene key set on the command line: `assignment` is KEY=VALUE (VALUE in
+/// TOML syntax); `typed` is how the user wrote it ("--set flag.fine=[65,97]",
+/// "--mode foo"), which is what an error about it quotes.
+struct Override {
+  std::string assignment;
+  std::string typed;
+};
+
+/// `text` as a TOML basic string, quoted and escaped ("a\"b" for a"b).
+std::string toml_string(std::string_view text);
+
+/// `--set KEY=VALUE` arguments as overrides, each quoted as typed.
+std::vector<Override> set_overrides(std::span<const std::string> assignments);
 
 /// Parses and validates a scene.
 /// @param toml_text    the scene file's contents
@@ -16,9 +31,12 @@ namespace flagsim {
 ///                     on top of the file and checked exactly like it
 /// @throws UserError on any malformed, unknown, out-of-range or inconsistent key
 Scene parse_scene(std::string_view toml_text, std::string_view source_path,
+                  std::span<const Override> overrides);
+Scene parse_scene(std::string_view toml_text, std::string_view source_path,
                   std::span<const std::string> overrides = {});
 
 /// Reads the file at `path` and parses it as above; an unreadable file is a UserError.
+Scene load_scene_file(const std::string& path, std::span<const Override> overrides);
 Scene load_scene_file(const std::string& path, std::span<const std::string> overrides = {});
 
 /// The embedded default scene (scenes/default.toml, compiled into the binary).

@@ -11,6 +11,7 @@
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
+#include "flagsim/core/strain.hpp"
 #include "flagsim/infill/infill_method.hpp"
 
 namespace flagsim::hybrid {
@@ -46,6 +47,13 @@ class Simulation {
 /// of slack, against 8 rest spacings (a half-wave needs 4 links, else it is a
 /// zigzag of the lattice and 3.5 clamps the wave count); nullopt otherwise.
 std::optional<std::string> wrinkle_resolution_note(const Scene& scene);
+
+/// Why the simulation's current frame cannot be trusted (divergence_reason()),
+/// or nullopt. When the links are overstretched in a frame where the infill
+/// reported that it did not reach its tolerance, the message blames the infill
+/// and says what to change there: the cloth's physics did not fail.
+std::optional<std::string> frame_divergence(const Simulation& simulation, const Scene& scene,
+                                            const StrainStats& strain);
 
 /// The simulation of the scene's mode, at its frame 0.
 std::unique_ptr<Simulation> make_simulation(const Scene& scene);

@@ -17,7 +17,7 @@
 //      cell row, then column (wrinkles.hpp), then 3.4 again; `rounds` times.
 // Big motions are cut (3.1): if a coarse node moves more than kMaxStepFraction
 // of the smaller cell side, the motion is split into equal deformation steps,
-// each run in full. The state carried between frames is the dense lattice
+// each run in full (at most kMaxCutSteps). The state carried between frames is the dense lattice
 // itself: every fill starts from the previous one, which is what lets a shape
 // persist (property 2). Work buffers are kept: fill() does not allocate.
 #include <array>
@@ -40,6 +40,10 @@ namespace flagsim::infill {
 /// (At a quarter cell, a flag frame took 2-3 deformation steps, each a full
 /// 3.1-3.4, for no gain in strain.)
 inline constexpr double kMaxStepFraction = 1.0;
+/// At most this many deformation steps a frame, whatever the motion: a coarse
+/// node that jumps across 64 cells at once gets steps longer than a cell (and
+/// the frame reports itself unconverged) rather than a frame that never ends.
+inline constexpr int kMaxCutSteps = 64;
 /// 3.3 runs on a fiber whose length is off its rest length by more than this
 /// (relative). Small on purpose: the weighted move of 3.2 leaves the middle of
 /// every fiber behind a little each frame, and at 0.5% that lag piled up over

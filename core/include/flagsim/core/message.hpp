@@ -1,0 +1,21 @@
+#pragma once
+// Text that goes into one line of a message (error:, note:, interrupted:):
+// whatever a user gave (a key, a name, a --set value) is quoted without its
+// control characters and cut to a sane length.
+#include <cstddef>
+#include <string>
+
+#include "flagsim/core/limits.hpp"
+
+namespace flagsim {
+
+/// `text` for one line of a message: control characters as \xNN, cut to
+/// `limit` bytes with "..." after.
+std::string printable(const std::string& text, std::size_t limit = 80);
+
+/// A whole message as one line: line breaks (and the indentation after them)
+/// become one space, other control characters \xNN, and the result is cut to
+/// `limit` bytes with "..." after. What the command line prints after "error: ".
+std::string one_line(const std::string& message, std::size_t limit = limits::kMessageBytes);
+
+}  // namespace flagsim
