@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/limits.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/stop_request.hpp"
@@ -23,7 +24,7 @@ namespace flagsim::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr int kMinSide = 16, kMaxSide = 8192;
+constexpr int kMinSide = limits::kImageSideMin, kMaxSide = limits::kImageSideMax;
 
 std::pair<int, int> parse_size(const std::string& text) {
   static const std::regex pattern(R"(^\s*(\d{1,6})\s*[xX]\s*(\d{1,6})\s*$)");
@@ -43,24 +44,31 @@ bool ends_with(const std::string& text, const std::string& tail) {
 }
 
 // The directory that will hold the output: created when missing (never more
-// than the request asked for), then checked for writing.
-void prepare_directory(const fs::path& dir, const std::string& what) {
+// than the request asked for, and removed again if nothing is written into
+// it), then checked for writing.
+void prepare_directory(const fs::path& dir, const std::string& what,
+                       CreatedDirectories& directories) {
   std::error_code error;
-  if (!dir.empty() && !fs::exists(dir, error)) fs::create_directories(dir, error);
+  if (!dir.empty()) directories.create(dir.string(), error);
   const fs::path probe = dir.empty() ? fs::path(".") : dir;
   if (error || !fs::is_directory(probe) || access(probe.c_str(), W_OK) != 0)
-    throw UserError(fmt::format("-o {}: cannot write to {} (check the path and its permissions)",
+    throw UserError(fmt::format("{}: cannot write to {} (check the path and its permissions)",
                                 what, probe.string()));
 }
 
 }  // namespace
 
-RenderPlan plan_render(const RenderRequest& request, const Scene* scene) {
+RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double fps) {
   const Render* scene_render = scene && scene->render ? &*scene->render : nullptr;
   RenderPlan plan;
   plan.output = request.output;
   if (plan.output.empty()) throw UserError("render: -o OUT.mp4 or -o DIR is required");
   plan.video = ends_with(plan.output, ".mp4");
+  if (plan.video && !(fps > 0.0 && fps <= limits::kFps))
+    throw UserError(fmt::format("{} {}: the run's frames per second ({}) is not in (0, {}]: "
+                                "cannot time a video; render PNG frames to a directory instead",
+                                request.output_flag, plan.output, fps, limits::kFps));
+  plan.fps = fps;
   plan.pole = scene && scene->flag.pin == PinSet::kLeft;
   if (scene_render) {
     plan.width = scene_render->size_px[0];
@@ -88,14 +96,15 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene) {
   if (plan.video) {
     if (render::find_ffmpeg().empty())
       throw UserError(
-          fmt::format("-o {}: MP4 needs ffmpeg, which is not on PATH (apt-get "
-                      "install ffmpeg), or give -o a directory for PNG frames",
-                      plan.output));
-    prepare_directory(fs::path(plan.output).parent_path(), plan.output);
+          fmt::format("{} {}: MP4 needs ffmpeg, which is not on PATH (apt-get "
+                      "install ffmpeg), or give a directory for PNG frames",
+                      request.output_flag, plan.output));
+    prepare_directory(fs::path(plan.output).parent_path(), request.output_flag + " " + plan.output,
+                      plan.directories);
     if (fs::is_directory(plan.output))
-      throw UserError(fmt::format("-o {}: is a directory", plan.output));
+      throw UserError(fmt::format("{} {}: is a directory", request.output_flag, plan.output));
   } else {
-    prepare_directory(fs::path(plan.output), plan.output);
+    prepare_directory(fs::path(plan.output), request.output_flag + " " + plan.output, plan.directories);
   }
   return plan;
 }
@@ -118,7 +127,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   render::FrameRenderer renderer(*context, options);
   std::optional<render::VideoWriter> video;
   if (plan.video)
-    video.emplace(plan.output, plan.width, plan.height, reader.number_attribute("fps", 30.0));
+    video.emplace(plan.output, plan.width, plan.height, plan.fps);
   double draw_s = 0.0, encode_s = 0.0;
   for (int t = 0; t < frames; ++t) {
     if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
@@ -160,14 +169,16 @@ int render_command(const std::string& h5_path, const RenderRequest& request) {
   files.check();
   // The file first: a missing or foreign input is the first thing to say.
   std::optional<Scene> scene;
+  double fps = 30.0;
   {
     const data::OutputReader reader(h5_path);
+    fps = reader.number_attribute("fps", fps);
     try {
       scene = parse_scene(reader.attribute("scene"), h5_path);
     } catch (const UserError&) {  // a scene this version cannot read: defaults, no pole
     }
   }
-  const RenderPlan plan = plan_render(request, scene ? &*scene : nullptr);
+  const RenderPlan plan = plan_render(request, scene ? &*scene : nullptr, fps);
   fmt::print("{}\n", render_file(h5_path, plan));
   return int(ExitCode::kSuccess);
 }

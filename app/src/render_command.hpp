@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/scene.hpp"
 #include "flagsim/render/frame_renderer.hpp"
 #include "flagsim/render/image.hpp"
@@ -15,6 +16,7 @@ struct RenderRequest {
   std::optional<std::string> size;     ///< --size WxH
   std::optional<std::string> style;    ///< --style
   std::optional<std::string> texture;  ///< --texture PNG
+  std::string output_flag = "-o";      ///< how the user gave `output`, for messages
 };
 
 /// Everything a render needs, checked before anything is written or run.
@@ -25,13 +27,16 @@ struct RenderPlan {
   render::Style style = render::Style::kShaded;
   render::Image texture;  ///< empty: the built-in pattern
   bool pole = false;      ///< the cloth hangs from its left edge (flag.pin = "left")
+  double fps = 30.0;      ///< of the MP4: the run's frames per second
+  CreatedDirectories directories;  ///< made for the output; removed again if left empty
 };
 
 /// Checks a request against the run's scene (its [render] defaults for style,
-/// size and texture, and its pins; null when the scene is unknown) and prepares
-/// the output destination. Throws UserError (exit 2) naming the bad flag or
-/// key; creates nothing on error.
-RenderPlan plan_render(const RenderRequest& request, const Scene* scene);
+/// size and texture, and its pins; null when the scene is unknown) and the
+/// run's frames per second (`fps`, from the scene or the file's attribute),
+/// and prepares the output destination. Throws UserError (exit 2) naming the
+/// bad flag, key or attribute; creates nothing on error.
+RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double fps);
 
 /// Draws every frame of the file `h5_path` as planned. Returns the summary line.
 std::string render_file(const std::string& h5_path, const RenderPlan& plan);

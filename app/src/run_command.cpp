@@ -73,9 +73,9 @@ int run_command(const RunOptions& options) {
   // A render is checked before the run: a bad --size must not cost a simulation.
   std::optional<RenderPlan> render_plan;
   if (!options.render.empty()) {
-    render_plan = plan_render(
-        {options.render, options.render_size, options.render_style, options.render_texture},
-        &scene);
+    render_plan = plan_render({options.render, options.render_size, options.render_style,
+                               options.render_texture, "--render"},
+                              &scene, scene.fps);
   } else if (options.render_size || options.render_style || options.render_texture) {
     throw UserError("--size, --style and --texture go with --render OUT.mp4|DIR");
   }

@@ -47,6 +47,48 @@ void FileRoles::check() const {
   }
 }
 
+CreatedDirectories::CreatedDirectories(CreatedDirectories&& other) noexcept
+    : created_(std::move(other.created_)) {
+  other.created_.clear();
+}
+
+CreatedDirectories& CreatedDirectories::operator=(CreatedDirectories&& other) noexcept {
+  if (this != &other) {
+    remove_empty();
+    created_ = std::move(other.created_);
+    other.created_.clear();
+  }
+  return *this;
+}
+
+CreatedDirectories::~CreatedDirectories() { remove_empty(); }
+
+bool CreatedDirectories::create(const std::string& dir, std::error_code& error) {
+  error.clear();
+  if (dir.empty()) return true;
+  // The missing ancestors, outermost first, each created (and recorded) in turn.
+  std::vector<fs::path> missing;
+  for (fs::path p = fs::path(dir).lexically_normal(); !p.empty() && !fs::exists(p, error);
+       p = p.parent_path()) {
+    missing.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    if (it->filename().empty()) continue;  // "a/b/" normalises with a trailing empty name
+    if (!fs::create_directory(*it, error) && error) return false;
+    created_.push_back(it->string());
+  }
+  return fs::is_directory(dir, error);
+}
+
+void CreatedDirectories::remove_empty() noexcept {
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) {
+    std::error_code ignored;
+    if (fs::is_empty(*it, ignored)) fs::remove(*it, ignored);
+  }
+  created_.clear();
+}
+
 void check_file_name_part(const std::string& name, const std::string& what) {
   bool control = false;
   for (unsigned char c : name) control = control || c < 0x20 || c == 0x7f;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -16,7 +17,8 @@ std::string describe(const toml::node& node) {
   if (node.is_floating_point()) return fmt::format("{}", *node.value<double>());  // shortest form
   if (node.is_string()) return fmt::format("\"{}\"", *node.value<std::string>());
   if (const toml::array* array = node.as_array();
-      array && array->size() <= 8 && array->is_homogeneous<double>()) {
+      array && array->size() <= 8 &&
+      std::all_of(array->begin(), array->end(), [](const toml::node& n) { return n.is_number(); })) {
     std::string text = "[";
     for (const toml::node& item : *array)
       text += fmt::format("{}{}", text.size() > 1 ? ", " : "", *item.value<double>());

@@ -15,6 +15,7 @@
 #include <fstream>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
 #include "h5_handle.hpp"
 
 namespace flagsim::data {
@@ -84,6 +85,7 @@ bool write_index_list(hid_t group, const char* name, const std::vector<int>& val
 }
 
 struct FrameWriter::Impl {
+  CreatedDirectories directories;  // the output's missing parents: gone again if left empty
   h5::Handle file;
   h5::Handle time, positions, max_strain, mean_strain, stage_seconds, wall_seconds, kinetic;
   h5::Handle coarse_positions;
@@ -103,10 +105,10 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   h5::silence_library_errors();
   const fs::path target(path_);
   std::error_code ec;
-  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
+  if (target.has_parent_path()) impl_->directories.create(target.parent_path().string(), ec);
   if (fs::is_directory(target, ec))
-    throw UserError(fmt::format("{}: is a directory; give an output file name such as {}/run.h5",
-                                path_, path_));
+    throw UserError(fmt::format("{}: is a directory; give an output file name such as {}",
+                                path_, (target / "run.h5").lexically_normal().string()));
   const std::string partial = partial_path();
   // A .partial left by a killed run is replaced; one that another run is
   // writing (HDF5 holds an exclusive lock on a file it writes) is not touched.

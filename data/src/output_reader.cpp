@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/limits.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "h5_handle.hpp"
 
@@ -16,21 +17,31 @@ struct OutputReader::Impl {
 
 namespace {
 
-// Reads a whole numeric dataset as double; empty if missing.
-std::vector<double> read_all(hid_t file, const char* path,
-                             std::vector<hsize_t>* dims_out = nullptr) {
+// Reads a whole numeric dataset as double; empty if missing. A dataset that
+// declares more than `at_most` values is refused before anything is
+// allocated: a file's declared shape is not trusted (a 55 KB file can declare
+// [1, 2^31, 1, 3]).
+std::vector<double> read_all(hid_t file, const std::string& file_path, const char* path,
+                             hsize_t at_most, std::vector<hsize_t>* dims_out = nullptr) {
   if (H5Lexists(file, path, H5P_DEFAULT) <= 0) return {};
   h5::Handle set = h5::dataset(H5Dopen2(file, path, H5P_DEFAULT));
   h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
   const int rank = H5Sget_simple_extent_ndims(space.get());
-  std::vector<hsize_t> dims(std::size_t(std::max(rank, 0)));
+  if (rank < 0 || rank > 4)
+    throw UserError(fmt::format("{}: {} has rank {}: not an output flag-sim wrote", file_path,
+                                path, rank));
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank), 0);
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   hsize_t count = 1;
-  for (hsize_t d : dims) count *= d;
+  for (hsize_t d : dims) count = d != 0 && count > at_most / d ? at_most + 1 : count * d;
+  if (count > at_most)
+    throw UserError(fmt::format("{}: {} declares more than the {} values its /frames/positions "
+                                "allows: not an output flag-sim wrote",
+                                file_path, path, at_most));
   std::vector<double> values(count);
   if (count > 0 &&
       H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-    values.clear();
+    throw UserError(fmt::format("{}: cannot read {} (truncated or damaged file?)", file_path, path));
   if (dims_out) *dims_out = dims;
   return values;
 }
@@ -71,6 +82,22 @@ OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Imp
   if (H5Sget_simple_extent_ndims(space.get()) != 4 ||
       H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0 || dims[3] != 3)
     throw UserError(fmt::format("{}: /frames/positions is not [T, J, K, 3]", path));
+  // The declared shape against what a scene can make and what the file holds.
+  if (dims[1] < 2 || dims[2] < 2 || dims[1] > hsize_t(limits::kLatticeSide) ||
+      dims[2] > hsize_t(limits::kLatticeSide) ||
+      dims[1] * dims[2] > hsize_t(limits::kLatticeNodes) || dims[0] > hsize_t(limits::kFrames))
+    throw UserError(fmt::format(
+        "{}: /frames/positions declares {} frames of {} x {} nodes, more than a flag-sim scene "
+        "can make (sides 2 to {}, at most {} nodes, {} frames)",
+        path, dims[0], dims[1], dims[2], limits::kLatticeSide, limits::kLatticeNodes,
+        limits::kFrames));
+  h5::Handle type = h5::datatype(H5Dget_type(set.get()));
+  const hsize_t declared = dims[0] * dims[1] * dims[2] * 3 * H5Tget_size(type.get());
+  if (H5Dget_storage_size(set.get()) < declared)
+    throw UserError(fmt::format(
+        "{}: /frames/positions declares {} frames of {} x {} nodes ({} bytes) but stores {}: "
+        "truncated, or not an output flag-sim wrote",
+        path, dims[0], dims[1], dims[2], declared, H5Dget_storage_size(set.get())));
   frames_ = int(dims[0]);
   rows_ = int(dims[1]);
   cols_ = int(dims[2]);
@@ -96,7 +123,7 @@ long long OutputReader::seed() const {
 }
 
 std::vector<double> OutputReader::times_s() const {
-  return read_all(impl_->file.get(), "/frames/time");
+  return read_all(impl_->file.get(), path_, "/frames/time", hsize_t(frames_));
 }
 
 std::vector<Vec3> OutputReader::positions(int frame) const {
@@ -115,35 +142,58 @@ std::vector<Vec3> OutputReader::positions(int frame) const {
 }
 
 std::vector<Vec3> OutputReader::rest_positions() const {
-  return to_vec3(read_all(impl_->file.get(), "/lattice/rest_positions"));
+  return to_vec3(read_all(impl_->file.get(), path_, "/lattice/rest_positions",
+                           hsize_t(rows_) * hsize_t(cols_) * 3));
 }
 
 std::vector<Vec3> OutputReader::coarse_positions(int frame) const {
-  std::vector<hsize_t> dims;
-  const std::vector<double> flat = read_all(impl_->file.get(), "/coarse/positions", &dims);
-  if (dims.size() != 4 || frame < 0 || hsize_t(frame) >= dims[0]) return {};
-  const std::size_t per_frame = std::size_t(dims[1] * dims[2] * dims[3]);
-  return to_vec3(std::vector<double>(flat.begin() + long(frame * per_frame),
-                                     flat.begin() + long((frame + 1) * per_frame)));
+  const hid_t file = impl_->file.get();
+  if (frame < 0 || frame >= frames_ || H5Lexists(file, "/coarse", H5P_DEFAULT) <= 0 ||
+      H5Lexists(file, "/coarse/positions", H5P_DEFAULT) <= 0)
+    return {};
+  h5::Handle set = h5::dataset(H5Dopen2(file, "/coarse/positions", H5P_DEFAULT));
+  h5::Handle file_space = h5::dataspace(H5Dget_space(set.get()));
+  hsize_t dims[4] = {0, 0, 0, 0};
+  if (H5Sget_simple_extent_ndims(file_space.get()) != 4 ||
+      H5Sget_simple_extent_dims(file_space.get(), dims, nullptr) < 0 || dims[3] != 3 ||
+      dims[1] > hsize_t(rows_) || dims[2] > hsize_t(cols_))
+    throw UserError(fmt::format("{}: /coarse/positions is not [T, Jc, Kc, 3] with Jc <= {}, Kc <= {}",
+                                path_, rows_, cols_));
+  if (hsize_t(frame) >= dims[0]) return {};
+  // One frame, as positions() reads: not the whole run for every frame.
+  const hsize_t start[4] = {hsize_t(frame), 0, 0, 0};
+  const hsize_t count[4] = {1, dims[1], dims[2], 3};
+  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+  h5::Handle memory = h5::dataspace(H5Screate_simple(4, count, nullptr));
+  std::vector<double> flat(std::size_t(dims[1] * dims[2] * 3));
+  if (H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT,
+              flat.data()) < 0)
+    throw UserError(fmt::format("{}: cannot read /coarse/positions of frame {}", path_, frame));
+  return to_vec3(flat);
 }
 
 std::vector<int> OutputReader::coarse_rows() const {
-  const std::vector<double> values = read_all(impl_->file.get(), "/coarse/rows");
+  const std::vector<double> values =
+      read_all(impl_->file.get(), path_, "/coarse/rows", hsize_t(rows_));
   return std::vector<int>(values.begin(), values.end());
 }
 
 std::vector<int> OutputReader::coarse_cols() const {
-  const std::vector<double> values = read_all(impl_->file.get(), "/coarse/cols");
+  const std::vector<double> values =
+      read_all(impl_->file.get(), path_, "/coarse/cols", hsize_t(cols_));
   return std::vector<int>(values.begin(), values.end());
 }
 
 std::vector<double> OutputReader::stat(const char* name) const {
-  return read_all(impl_->file.get(), fmt::format("/stats/{}", name).c_str());
+  return read_all(impl_->file.get(), path_, fmt::format("/stats/{}", name).c_str(),
+                  hsize_t(frames_));
 }
 
 std::vector<std::vector<double>> OutputReader::stage_seconds() const {
   std::vector<hsize_t> dims;
-  const std::vector<double> flat = read_all(impl_->file.get(), "/stats/stage_seconds", &dims);
+  // At most 64 stages a frame (flag-sim writes under 16).
+  const std::vector<double> flat =
+      read_all(impl_->file.get(), path_, "/stats/stage_seconds", hsize_t(frames_) * 64, &dims);
   std::vector<std::vector<double>> rows;
   if (dims.size() != 2 || dims[1] == 0) return rows;
   // Each column is the stage its `stages` attribute names: a file where the

@@ -278,8 +278,19 @@ std::optional<std::string> frame_divergence(const Simulation& simulation, const 
                                             const StrainStats& strain) {
   std::optional<std::string> why =
       divergence_reason(simulation.positions(), simulation.velocities(), strain, scene.limits);
+  if (!why) return why;
+  if (scene.mode == Mode::kInfill && strain.max <= scene.limits.max_strain) {
+    // No physics moves an infill-mode cloth: a node this fast follows the keyframes.
+    double fastest = 0.0;
+    for (const Vec3& v : simulation.velocities()) fastest = std::max(fastest, v.norm());
+    if (std::isfinite(fastest) && fastest > scene.limits.max_speed_m_s)
+      return fmt::format(
+          "a node moves at {:.3g} m/s, above limits.max_speed = {:.3g} m/s: the keyframes move "
+          "the corners that fast; space them further apart in time or raise limits.max_speed",
+          fastest, scene.limits.max_speed_m_s);
+  }
   const std::optional<infill::FillReport> report = simulation.infill_report();
-  if (!why || !report || report->converged || strain.max <= scene.limits.max_strain) return why;
+  if (!report || report->converged || strain.max <= scene.limits.max_strain) return why;
   const bool paper = infill_solver_of(scene) == InfillSolverKind::kPaper;
   return fmt::format(
       "max link strain {:.3g} exceeds limits.max_strain = {:.3g}, and the infill ({} solver) did "

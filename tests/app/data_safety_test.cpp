@@ -258,5 +258,99 @@ TEST(DataSafety, ASweepNeverTakesAPointsPathThatIsAlreadyThere) {
   EXPECT_FALSE(fs::exists(dir.file("out.csv")));
 }
 
+// Every error is one line, however the message was built: arrays laid out over
+// lines by the TOML library, a --set value holding a line break, a 100 kB name.
+TEST(DataSafety, EveryErrorIsOneLineOfSaneLength) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  dir.write("nan.toml", "[wind]\nvelocity = [nan, 1e308, 0]\n");
+  dir.write("deep.toml", "[wind]\nvelocity = " + std::string(200, '[') + std::string(200, ']'));
+  dir.write("tables.toml", "[[flag]]\nfine = [3, 3]\n");
+  expect_refused(run_flag_sim({"validate", "nan.toml"}, dir.path()),
+                 "nan.toml:2:12: wind.velocity: expected an array of 3 finite numbers", "nan");
+  expect_refused(run_flag_sim({"validate", "deep.toml"}, dir.path()), "nesting deeper than 64",
+                 "200-deep array");
+  expect_refused(run_flag_sim({"validate", "tables.toml"}, dir.path()),
+                 "tables.toml:1:1: flag: expected a table [flag]", "[[flag]]");
+  expect_refused(
+      run_flag_sim({"run", "s.toml", "--set", "flag.fine=[9,9]\n[foo]", "-o", "x.h5"}, dir.path()),
+      "a value must be on one line", "--set with a line break");
+  const ProcessResult huge = run_flag_sim(
+      {"run", "s.toml", "--set", "flag.pin=\"" + std::string(100000, 'a') + "\"", "-o", "x.h5"},
+      dir.path());
+  expect_refused(huge, "...", "a 100 kB value");
+  EXPECT_LT(huge.err.size(), 800u);
+  EXPECT_EQ(dir.entry_count(), 4);
+}
+
+// An error names what the user wrote: the flag as typed, the --set argument
+// that reached into a key, the file, line and column of a keyframe's corner.
+TEST(DataSafety, ErrorsQuoteWhatTheUserTyped) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  expect_refused(run_flag_sim({"run", "s.toml", "--mode", "foo", "-o", "x.h5"}, dir.path()),
+                 "error: --mode foo: scene.mode: expected one of", "--mode foo");
+  expect_refused(
+      run_flag_sim({"run", "s.toml", "--set", "flag.fine.x=1", "-o", "x.h5"}, dir.path()),
+      "error: --set flag.fine.x=1: flag.fine: expected [J, K] nodes", "--set into a pair");
+  dir.write("corner.toml",
+            "[scene]\nmode = \"infill\"\nduration = 0.1\n[flag]\nfine = [9, 9]\n[[keyframe]]\n"
+            "time = 0.0\ncorners = [[0, 2, 0], [1.5, 2, 0], [0, 1, 0], [1.5, 1, \"x\"]]\n");
+  expect_refused(run_flag_sim({"validate", "corner.toml"}, dir.path()),
+                 "error: corner.toml:8:47: keyframe.corners: expected an array of 3 numbers",
+                 "a corner that is not a point");
+  EXPECT_EQ(dir.entry_count(), 2);
+}
+
+// Infill corners a million metres apart: refused with the range, at once; a
+// flag carried 5 km in one frame is bounded work (64 cut steps), not a hang.
+TEST(DataSafety, InfillCornersTheFlagCannotSpanAreRefusedAndBigJumpsAreBounded) {
+  TempDir dir;
+  const std::string head =
+      "[scene]\nmode = \"infill\"\nduration = 0.2\n[flag]\nsize = [1.5, 1.0]\nfine = [17, 25]\n"
+      "[limits]\nmax_speed = 1e6\n"
+      "[[keyframe]]\ntime = 0.0\ncorners = [[0, 2, 0], [1.5, 2, 0], [0, 1, 0], [1.5, 1, 0]]\n"
+      "[[keyframe]]\ntime = 0.034\n";
+  dir.write("far.toml", head + "corners = [[0, 2, 0], [1e6, 2, 0], [0, 1, 0], [1e6, 1, 0]]\n");
+  dir.write("apart.toml",
+            head + "corners = [[0, 2, 0], [5000, 2, 0], [0, 1, 0], [5000, 1, 0]]\n");
+  dir.write("jump.toml", head + "corners = [[5000, 2, 0], [5001.5, 2, 0], [5000, 1, 0], "
+                                "[5001.5, 1, 0]]\n");
+  expect_refused(run_flag_sim({"run", "far.toml", "-o", "x.h5"}, dir.path()),
+                 "each in [-10000, 10000], got [1000000, 2, 0]", "a million metres");
+  expect_refused(run_flag_sim({"run", "apart.toml", "-o", "x.h5"}, dir.path()),
+                 "corners (0,0) and (0,K-1) are 5000 m apart, but the 1.5 x 1 m flag spans only "
+                 "1.5 m",
+                 "farther apart than the flag");
+  const auto start = std::chrono::steady_clock::now();
+  const ProcessResult jump =
+      run_flag_sim({"run", "jump.toml", "-o", "jump.h5", "--quiet"}, dir.path());
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60));
+  EXPECT_EQ(jump.exit_code, 0) << jump.err;
+  EXPECT_NE((jump.out + jump.err).find("note: the infill did not reach its tolerance"),
+            std::string::npos)
+      << jump.out << jump.err;
+}
+
+// Exit 2 leaves nothing behind: not the directories made for an output that
+// was never written (-o newdir/sub/, a video whose frame rate is unusable),
+// nor a render directory of a run that diverged before its first frame.
+TEST(DataSafety, AFailedCommandLeavesNoDirectoriesBehind) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  expect_refused(run_flag_sim({"run", "s.toml", "-o", "newdir/sub/", "--quiet"}, dir.path()),
+                 "newdir/sub/: is a directory; give an output file name such as newdir/sub/run.h5",
+                 "-o a directory");
+  EXPECT_EQ(dir.entry_count(), 1);
+  const ProcessResult diverged =
+      run_flag_sim({"run", "s.toml", "-o", "out/r.h5", "--render", "frames/a", "--set",
+                    "limits.max_strain=1e-9", "--set", "flag.initial_perturbation=0.01", "--quiet"},
+                   dir.path());
+  EXPECT_EQ(diverged.exit_code, 3) << diverged.err;
+  EXPECT_NE(diverged.err.find("at t = 0 s (frame 0)"), std::string::npos) << diverged.err;
+  EXPECT_TRUE(fs::exists(dir.file("out/r.h5")));  // the good frames are kept
+  EXPECT_FALSE(fs::exists(dir.file("frames")));   // but no empty render directory
+}
+
 }  // namespace
 }  // namespace flagsim::test

@@ -70,7 +70,7 @@ TEST(SceneParser, OverridesAreCheckedLikeTheFile) {
   EXPECT_NE(scene.toml_text.find("fine = [ 17, 25 ]"), std::string::npos) << scene.toml_text;
   EXPECT_EQ(error_of(kMinimal, {"flag.fine=[1, 25]"}),
             "--set flag.fine=[1, 25]: flag.fine: expected [J, K] nodes, two integers in [2, 8193], "
-            "got [ 1, 25 ]");
+            "got [1, 25]");
   EXPECT_NE(error_of(kMinimal, {"flag.fine"}).find("expected KEY=VALUE"), std::string::npos);
 }
 
@@ -82,7 +82,7 @@ TEST(SceneParser, FramesKeyFixesTheDuration) {
 TEST(SceneParser, ErrorsNameFileLineColumnAndKey) {
   EXPECT_EQ(error_of(std::string(kMinimal) + "[wind]\nvelocity = [10, 0]\n"),
             "s.toml:8:12: wind.velocity: expected an array of 3 finite numbers [x, y, z] in m/s, "
-            "got [ 10, 0 ]");
+            "got [10, 0]");
   EXPECT_EQ(error_of(std::string(kMinimal) + "areal_densty = 0.2\n"),
             "s.toml:7:1: unknown key 'flag.areal_densty' (did you mean 'flag.areal_density'?)");
 }

@@ -4,6 +4,7 @@
 // spelt (contract: "No output of a command ... may be the same file as any of
 // its inputs"). Nothing a user gave is ever overwritten.
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "flagsim/core/message.hpp"
@@ -27,6 +28,28 @@ class FileRoles {
     std::string path, what;
   };
   std::vector<Role> inputs_, outputs_;
+};
+
+/// The directories a command creates to hold its outputs. Each one that is
+/// still empty when this goes away is removed again, deepest first: a command
+/// that fails before it writes leaves nothing behind (not even newdir/sub of
+/// `-o newdir/sub/run.h5`), one that wrote a file keeps the directories it is in.
+class CreatedDirectories {
+ public:
+  CreatedDirectories() = default;
+  CreatedDirectories(CreatedDirectories&& other) noexcept;
+  CreatedDirectories& operator=(CreatedDirectories&& other) noexcept;
+  CreatedDirectories(const CreatedDirectories&) = delete;
+  CreatedDirectories& operator=(const CreatedDirectories&) = delete;
+  ~CreatedDirectories();
+
+  /// Creates `dir` and whichever of its parents are missing; false (with
+  /// `error` set) when that fails. An existing `dir` is not ours to remove.
+  bool create(const std::string& dir, std::error_code& error);
+
+ private:
+  void remove_empty() noexcept;
+  std::vector<std::string> created_;  ///< outermost first
 };
 
 /// Whether `a` and `b` name the same file (as FileRoles::check compares them).
