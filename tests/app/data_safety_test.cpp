@@ -352,5 +352,42 @@ TEST(DataSafety, AFailedCommandLeavesNoDirectoriesBehind) {
   EXPECT_FALSE(fs::exists(dir.file("frames")));   // but no empty render directory
 }
 
+// One limit for an image side, whether it comes from the scene or --size.
+TEST(DataSafety, ImageSizesHaveOneLimit) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  expect_refused(run_flag_sim({"run", "s.toml", "--set", "render.size=[16384,16]", "-o", "x.h5"},
+                              dir.path()),
+                 "render.size: expected [w, h] pixels, two integers in [16, 8192]", "[render] size");
+  expect_refused(
+      run_flag_sim({"run", "s.toml", "-o", "x.h5", "--render", "f", "--size", "16384x16"},
+                   dir.path()),
+      "--size 16384x16: each side must be 16 to 8192 pixels", "--size");
+  EXPECT_EQ(dir.entry_count(), 1);
+}
+
+// A 1024-link cell from two coarse nodes: the smooth infill fills it; the
+// paper's, given too few sweeps, overstretches it, and the message says that
+// the infill failed, not the cloth (it used to advise a stiffer fabric).
+TEST(DataSafety, AnInfillFailureIsNotReportedAsTheClothDiverging) {
+  TempDir dir;
+  dir.write("s.toml", kTiny);
+  const std::vector<std::string> base = {"run",   "s.toml", "--set", "flag.fine=[2,1025]",
+                                         "--set", "flag.coarse=[2,2]", "--frames", "3",
+                                         "--quiet"};
+  std::vector<std::string> smooth = base, paper = base;
+  smooth.insert(smooth.end(), {"-o", "smooth.h5"});
+  paper.insert(paper.end(), {"-o", "paper.h5", "--set", "infill.solver=\"paper\"", "--set",
+                             "infill.relax_iterations=10"});
+  const ProcessResult filled = run_flag_sim(smooth, dir.path());
+  EXPECT_EQ(filled.exit_code, 0) << filled.err;
+  const ProcessResult failed = run_flag_sim(paper, dir.path());
+  EXPECT_EQ(failed.exit_code, 3) << failed.err;
+  EXPECT_NE(failed.err.find("the infill failed, not the cloth; raise infill.relax_iterations"),
+            std::string::npos)
+      << failed.err;
+  EXPECT_EQ(failed.err.find("raise flag.stretch_modulus"), std::string::npos) << failed.err;
+}
+
 }  // namespace
 }  // namespace flagsim::test
