@@ -97,8 +97,9 @@ class SmoothInfill final : public InfillMethod {
   void set_bands(std::span<const Vec3> coarse_m);
   /// 3.5: each node's offset along the surface's normal set to the whole fibers' waves.
   void add_wrinkles(std::span<Vec3> positions_m);
-  /// The coarser level's offsets from its surface, interpolated (bilinear) to
-  /// this lattice and added to `positions_m` (this level's surface).
+  /// The coarser level's offsets from its surface, interpolated to this
+  /// lattice (4-point subdivision, separable) and added to `positions_m`
+  /// (this level's surface).
   void add_coarser_offsets(std::span<Vec3> positions_m);
 
   Lattice lattice_;
@@ -121,6 +122,7 @@ class SmoothInfill final : public InfillMethod {
   // offsets from the surface start this level's projection.
   std::unique_ptr<SmoothInfill> coarser_;
   std::vector<Vec3> coarser_positions_;  ///< the coarser level's result
+  std::vector<Vec3> coarser_offsets_;    ///< its offsets upsampled along the rows [half.rows x K]
 };
 
 }  // namespace flagsim::infill
