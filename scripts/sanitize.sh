@@ -3,6 +3,9 @@
 # build-asan/ and runs the whole test suite there; any report fails the run.
 # Not part of .ci/run (it doubles the build time and takes ~15 minutes on 2
 # cores); run it before a release. Mesa's own leaks are suppressed (lsan.supp).
+# The `large` cases (the same code at 257 x 385 and up) are left out: under
+# ASan the 257 x 385 hard case runs past its 600 s timeout. Extra arguments go
+# to ctest (e.g. -L large to run them anyway).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/setup.sh" --no-build
@@ -17,4 +20,8 @@ cd "$root/build-asan"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-ctest --output-on-failure -j "$jobs" "$@"
+if (($#)); then
+  ctest --output-on-failure -j "$jobs" "$@"
+else
+  ctest --output-on-failure -j "$jobs" -LE large
+fi
