@@ -314,18 +314,20 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
 
 double FiberProjection::worst_excess(std::span<const Vec3> positions_m) const {
   const int J = lattice_.rows, K = lattice_.cols;
+  // A link with both ends held cannot be moved: not counted (as in project()).
+  const auto held = [&](std::size_t node) { return inverse_mass_[node] == 0.0; };
   double worst = 0.0;
   for (int j = 0; j < J; ++j)
     for (int k = 0; k < K; ++k) {
-      const Vec3& p = positions_m[lattice_.index(j, k)];
-      if (k + 1 < K)
-        worst = std::max(worst, outside((positions_m[lattice_.index(j, k + 1)] - p).norm() /
-                                            lattice_.spacing_x_m,
+      const std::size_t a = lattice_.index(j, k);
+      const Vec3& p = positions_m[a];
+      if (k + 1 < K && !(held(a) && held(a + 1)))
+        worst = std::max(worst, outside((positions_m[a + 1] - p).norm() / lattice_.spacing_x_m,
                                         row_bands_[std::size_t(j) * (K - 1) + std::size_t(k)]));
-      if (j + 1 < J)
-        worst = std::max(worst, outside((positions_m[lattice_.index(j + 1, k)] - p).norm() /
-                                            lattice_.spacing_y_m,
-                                        col_bands_[std::size_t(j) * K + std::size_t(k)]));
+      if (j + 1 < J && !(held(a) && held(a + std::size_t(K))))
+        worst = std::max(worst,
+                         outside((positions_m[a + std::size_t(K)] - p).norm() / lattice_.spacing_y_m,
+                                 col_bands_[std::size_t(j) * K + std::size_t(k)]));
     }
   return worst;
 }

@@ -95,5 +95,27 @@ TEST(FiberProjection, ABandWiderThanOneLetsTheLinkStretch) {
       EXPECT_NEAR((x[lattice.index(j, k + 1)] - x[lattice.index(j, k)]).norm() / 0.25, 1.03, 1e-5);
 }
 
+// An unconverged projection reports how far the movable links are outside
+// their bands; links held at both ends (the pole, given a band its rest length
+// is 25% outside) cannot move and are not counted (they once set the residual
+// of every unconverged frame to their own).
+TEST(FiberProjection, TheResidualCountsOnlyLinksItCanMove) {
+  const Lattice lattice = Lattice::rectangle(5, 9, 1.0, 0.5, Vec3::Zero());
+  FiberProjection projection(lattice);
+  std::vector<std::uint8_t> held(lattice.node_count(), 0);
+  for (int j = 0; j < 5; ++j) held[lattice.index(j, 0)] = 1;
+  projection.hold(held);
+  projection.set_uniform_band(0.005);
+  for (int j = 0; j + 1 < 5; ++j) projection.col_bands()[std::size_t(j) * 9] = {1.25, 1.3};
+  std::vector<Vec3> x = lattice.rest_positions();
+  x[lattice.index(2, 8)].x() += 0.2 * lattice.spacing_x_m;          // one free link, 20% long
+  const ProjectionReport capped = projection.project(x, 1e-6, 0, 1);
+  EXPECT_FALSE(capped.converged);
+  EXPECT_NEAR(capped.worst_excess, 0.2 - 0.005, 1e-9);
+  const ProjectionReport done = projection.project(x, 1e-6, 50, 4);
+  EXPECT_TRUE(done.converged);
+  EXPECT_EQ(done.worst_excess, 0.0);
+}
+
 }  // namespace
 }  // namespace flagsim::infill
