@@ -25,7 +25,9 @@ FiberProjection::FiberProjection(const Lattice& fine)
     : lattice_(fine),
       inverse_mass_(fine.node_count(), 1.0),
       row_bands_(std::size_t(fine.rows) * std::size_t(fine.cols - 1)),
-      col_bands_(std::size_t(fine.rows - 1) * std::size_t(fine.cols)) {
+      col_bands_(std::size_t(fine.rows - 1) * std::size_t(fine.cols)),
+      row_fixed_(row_bands_.size(), 0),
+      col_fixed_(col_bands_.size(), 0) {
   const std::size_t lanes = std::size_t(std::max(fine.rows, fine.cols)) * kLanes;
   for (std::vector<double>* buffer : {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_,
                                       &diag_, &off_, &rhs_, &dx_, &dy_, &dz_})
@@ -36,6 +38,16 @@ FiberProjection::FiberProjection(const Lattice& fine)
 void FiberProjection::hold(std::span<const std::uint8_t> held) {
   assert(held.size() == inverse_mass_.size());
   for (std::size_t i = 0; i < held.size(); ++i) inverse_mass_[i] = held[i] ? 0.0 : 1.0;
+  const int J = lattice_.rows, K = lattice_.cols;
+  for (int j = 0; j < J; ++j)
+    for (int k = 0; k < K; ++k) {
+      const std::size_t a = lattice_.index(j, k);
+      if (k + 1 < K)
+        row_fixed_[std::size_t(j) * std::size_t(K - 1) + std::size_t(k)] = held[a] && held[a + 1];
+      if (j + 1 < J)
+        col_fixed_[std::size_t(j) * std::size_t(K) + std::size_t(k)] =
+            held[a] && held[a + std::size_t(K)];
+    }
 }
 
 void FiberProjection::set_uniform_band(double band) {
@@ -266,36 +278,22 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
                                           int max_rounds, int steps_per_fiber) {
   assert(positions_m.size() == lattice_.node_count());
   ProjectionReport report;
-  // The bounds of every link with the tolerance, squared, in m^2.
-  const auto squared_bounds = [tolerance](std::span<const LinkBand> bands, double rest_m,
+  // The bounds of every link with the tolerance, squared, in m^2; a link with
+  // both ends held cannot be moved: never out of bounds (hold() marks them).
+  const auto squared_bounds = [tolerance](std::span<const LinkBand> bands,
+                                          const std::vector<std::uint8_t>& fixed, double rest_m,
                                           std::vector<double>& low2, std::vector<double>& high2) {
     low2.resize(bands.size());
     high2.resize(bands.size());
     for (std::size_t i = 0; i < bands.size(); ++i) {
       const double low = std::max(0.0, bands[i].lower - tolerance) * rest_m;
       const double high = (bands[i].upper + tolerance) * rest_m;
-      low2[i] = low * low;
-      high2[i] = high * high;
+      low2[i] = fixed[i] ? 0.0 : low * low;
+      high2[i] = fixed[i] ? std::numeric_limits<double>::infinity() : high * high;
     }
   };
-  squared_bounds(row_bands_, lattice_.spacing_x_m, row_low2_, row_high2_);
-  squared_bounds(col_bands_, lattice_.spacing_y_m, col_low2_, col_high2_);
-  // A link with both ends held cannot be moved: never out of bounds.
-  const int J = lattice_.rows, K = lattice_.cols;
-  for (int j = 0; j < J; ++j)
-    for (int k = 0; k < K; ++k) {
-      if (inverse_mass_[lattice_.index(j, k)] != 0.0) continue;
-      const std::size_t row_link = std::size_t(j) * std::size_t(K - 1) + std::size_t(k);
-      const std::size_t col_link = std::size_t(j) * std::size_t(K) + std::size_t(k);
-      if (k + 1 < K && inverse_mass_[lattice_.index(j, k + 1)] == 0.0) {
-        row_low2_[row_link] = 0.0;
-        row_high2_[row_link] = std::numeric_limits<double>::infinity();
-      }
-      if (j + 1 < J && inverse_mass_[lattice_.index(j + 1, k)] == 0.0) {
-        col_low2_[col_link] = 0.0;
-        col_high2_[col_link] = std::numeric_limits<double>::infinity();
-      }
-    }
+  squared_bounds(row_bands_, row_fixed_, lattice_.spacing_x_m, row_low2_, row_high2_);
+  squared_bounds(col_bands_, col_fixed_, lattice_.spacing_y_m, col_low2_, col_high2_);
   for (int round = 1; round <= max_rounds && !stop_requested(); ++round) {
     report.rounds = round;
     const bool rows_moved =

@@ -103,6 +103,7 @@ class FiberProjection {
   Lattice lattice_;
   std::vector<double> inverse_mass_;  ///< [J*K]
   std::vector<LinkBand> row_bands_, col_bands_;
+  std::vector<std::uint8_t> row_fixed_, col_fixed_;  ///< links with both ends held
   std::vector<int> active_;               ///< fibers of the family being worked on that need a step
   std::vector<std::uint8_t> fiber_flag_;  ///< each fiber: a link out of bounds, in the check
   std::vector<double> row_low2_, row_high2_, col_low2_, col_high2_;  ///< bounds with tolerance, m^2
