@@ -202,7 +202,7 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
 }
 
 bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, double tolerance,
-                                     int steps, int* steps_made) {
+                                     int steps, int* steps_made, bool check) {
   const int J = lattice_.rows, K = lattice_.cols;
   const int fibers = rows ? J : K, links = rows ? K - 1 : J - 1;
   const std::size_t stride = rows ? 1 : std::size_t(K);
@@ -216,11 +216,12 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   // squared lengths against squared bounds (set up by project()), no square
   // root and no branch, row-major order for both families (a column's links
   // are K apart), so the loop vectorises.
-  fiber_flag_.assign(std::size_t(fibers), 0);
+  const int steps_before = *steps_made;
+  fiber_flag_.assign(std::size_t(fibers), check ? 0 : 1);
   const std::vector<double>& low2 = rows ? row_low2_ : col_low2_;
   const std::vector<double>& high2 = rows ? row_high2_ : col_high2_;
   const int link_rows = rows ? J : J - 1, links_per_row = rows ? K - 1 : K;
-  for (int j = 0; j < link_rows; ++j) {
+  for (int j = 0; j < link_rows && check; ++j) {
     const Vec3* here = positions_m.data() + lattice_.index(j, 0);
     const Vec3* next = rows ? here + 1 : here + K;
     const double* lo = low2.data() + std::size_t(j) * std::size_t(links_per_row);
@@ -271,7 +272,7 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
         positions_m[first_of(lane_fiber[l]) + std::size_t(i) * stride] = Vec3(x_[a], y_[a], z_[a]);
       }
   }
-  return !active_.empty();
+  return *steps_made > steps_before;  // a fiber flagged but within tolerance after all: no move
 }
 
 ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double tolerance,
@@ -296,10 +297,13 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
   squared_bounds(col_bands_, col_fixed_, lattice_.spacing_y_m, col_low2_, col_high2_);
   for (int round = 1; round <= max_rounds && !stop_requested(); ++round) {
     report.rounds = round;
-    const bool rows_moved =
-        project_family(true, positions_m, tolerance, steps_per_fiber, &report.fiber_steps);
-    const bool cols_moved =
-        project_family(false, positions_m, tolerance, steps_per_fiber, &report.fiber_steps);
+    // The first round solves every fiber without checking first: nearly all
+    // need a step then (a fiber that does not returns before its first one).
+    const bool check = round > 1;
+    const bool rows_moved = project_family(true, positions_m, tolerance, steps_per_fiber,
+                                           &report.fiber_steps, check);
+    const bool cols_moved = project_family(false, positions_m, tolerance, steps_per_fiber,
+                                           &report.fiber_steps, check);
     if (!rows_moved && !cols_moved) {  // a whole round found nothing to move
       report.converged = true;
       return report;

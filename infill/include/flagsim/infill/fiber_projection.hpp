@@ -93,10 +93,11 @@ class FiberProjection {
   double worst_excess(std::span<const Vec3> positions_m) const;
 
  private:
-  /// One family (rows or columns): a round over its fibers. Returns whether
-  /// any fiber had a link outside its band by more than the tolerance.
+  /// One family (rows or columns): a round over its fibers, each with a link
+  /// outside its band by more than the tolerance solved (with `check` false:
+  /// every fiber, unchecked). Returns whether any fiber made a step.
   bool project_family(bool rows, std::span<Vec3> positions_m, double tolerance, int steps,
-                      int* steps_made);
+                      int* steps_made, bool check);
   /// Gauss-Newton steps on the kLanes fibers gathered in the lane buffers.
   void step_lanes(int links, double rest_m, double tolerance, int steps, int* steps_made);
 
