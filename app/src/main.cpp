@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--frames", run.frames, "Number of frames to write, including t = 0");
   run_cmd->add_option("--seed", run.seed, "Override scene.seed");
   run_cmd->add_option("--set", run.sets, "Override a scene key: KEY=VALUE (TOML value)");
-  run_cmd->add_option("--render", run.render, "Also render the frames to OUT.mp4 or DIR (PNGs)");
+  run_cmd->add_option("--render", run.render, "Also render the frames to OUT.mp4|.mkv|.webm|.gif or DIR (PNGs)");
   run_cmd->add_option("--size", run.render_size, "Rendered image size WxH (default 1280x720)");
   run_cmd->add_option("--style", run.render_style, "wireframe, shaded (default) or textured");
   run_cmd->add_option("--texture", run.render_texture, "PNG for --style textured");
@@ -66,9 +66,9 @@ int main(int argc, char** argv) {
   std::string render_input;
   flagsim::app::RenderRequest render;
   CLI::App* render_cmd =
-      cli.add_subcommand("render", "Draw the frames of an output file to PNGs or an MP4");
+      cli.add_subcommand("render", "Draw the frames of an output file to PNGs or a video");
   render_cmd->add_option("file", render_input, "flag-sim output (.h5)")->required();
-  render_cmd->add_option("-o,--output", render.output, "OUT.mp4, or a directory for PNG frames")
+  render_cmd->add_option("-o,--output", render.output, "OUT.mp4|.mkv|.webm|.gif, or a directory for PNG frames")
       ->required();
   render_cmd->add_option("--size", render.size, "Image size WxH (default 1280x720)");
   render_cmd->add_option("--style", render.style, "wireframe, shaded (default) or textured");

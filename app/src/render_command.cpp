@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <regex>
 
@@ -58,12 +60,38 @@ void prepare_directory(const fs::path& dir, const std::string& what,
 
 }  // namespace
 
+double frame_rate_of(const data::OutputReader& reader) {
+  // From the frames' own times (a run with output.every = 3 at 30 fps wrote
+  // frames 0.1 s apart: its video plays at 10 fps); the attribute when there
+  // are fewer than two frames or the times are not increasing.
+  const std::vector<double> times = reader.times_s();
+  std::vector<double> steps;
+  for (std::size_t t = 1; t < times.size(); ++t) steps.push_back(times[t] - times[t - 1]);
+  if (steps.empty()) return reader.number_attribute("fps", 30.0);
+  std::nth_element(steps.begin(), steps.begin() + long(steps.size() / 2), steps.end());
+  const double step = steps[steps.size() / 2];
+  return step > 0.0 && std::isfinite(step) ? 1.0 / step : reader.number_attribute("fps", 30.0);
+}
+
 RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double fps) {
   const Render* scene_render = scene && scene->render ? &*scene->render : nullptr;
   RenderPlan plan;
   plan.output = request.output;
   if (plan.output.empty()) throw UserError("render: -o OUT.mp4 or -o DIR is required");
-  plan.video = ends_with(plan.output, ".mp4");
+  plan.container = render::container_of(plan.output);
+  plan.video = plan.container.has_value();
+  // Anything else is a directory of PNG frames; a name with some other
+  // extension (run.avi) is almost surely meant as a video: refused rather than
+  // made into a directory of that name. An existing directory, or a trailing
+  // '/', says "directory" whatever the name.
+  if (!plan.video && !ends_with(plan.output, "/") && !fs::is_directory(plan.output)) {
+    const std::string extension = fs::path(plan.output).extension().string();
+    if (!extension.empty() && extension != ".")
+      throw UserError(fmt::format(
+          "{} {}: '{}' is not a video flag-sim writes (.mp4, .mkv, .webm, .gif); for PNG frames "
+          "give a directory (a trailing '/' makes any name one)",
+          request.output_flag, plan.output, extension));
+  }
   if (plan.video && !(fps > 0.0 && fps <= limits::kFps))
     throw UserError(fmt::format("{} {}: the run's frames per second ({}) is not in (0, {}]: "
                                 "cannot time a video; render PNG frames to a directory instead",
@@ -83,10 +111,9 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
           "--style {}: expected one of \"wireframe\", \"shaded\", \"textured\"", *request.style));
     plan.style = *style;
   }
-  if (plan.video && (plan.width % 2 || plan.height % 2))
-    throw UserError(
-        fmt::format("--size {}x{}: an MP4 (H.264, yuv420p) needs an even width and height",
-                    plan.width, plan.height));
+  if (plan.video && render::needs_even_size(*plan.container) && (plan.width % 2 || plan.height % 2))
+    throw UserError(fmt::format("--size {}x{}: {} (yuv420p) needs an even width and height",
+                                plan.width, plan.height, render::to_string(*plan.container)));
   std::string texture = request.texture.value_or(scene_render ? scene_render->texture : "");
   if (!texture.empty()) {
     if (plan.style != render::Style::kTextured)
@@ -96,7 +123,7 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   if (plan.video) {
     if (render::find_ffmpeg().empty())
       throw UserError(
-          fmt::format("{} {}: MP4 needs ffmpeg, which is not on PATH (apt-get "
+          fmt::format("{} {}: a video needs ffmpeg, which is not on PATH (apt-get "
                       "install ffmpeg), or give a directory for PNG frames",
                       request.output_flag, plan.output));
     prepare_directory(fs::path(plan.output).parent_path(), request.output_flag + " " + plan.output,
@@ -127,7 +154,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   render::FrameRenderer renderer(*context, options);
   std::optional<render::VideoWriter> video;
   if (plan.video)
-    video.emplace(plan.output, plan.width, plan.height, plan.fps);
+    video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
   double draw_s = 0.0, encode_s = 0.0;
   for (int t = 0; t < frames; ++t) {
     if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
@@ -157,7 +184,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   return fmt::format(
       "rendered {} frames ({}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}", frames,
       render::to_string(plan.style), plan.width, plan.height, 1e3 * draw_s / n, 1e3 * encode_s / n,
-      plan.video ? "H.264" : "PNG", plan.output);
+      plan.video ? render::to_string(*plan.container) : "PNG", plan.output);
 }
 
 int render_command(const std::string& h5_path, const RenderRequest& request) {
@@ -172,7 +199,7 @@ int render_command(const std::string& h5_path, const RenderRequest& request) {
   double fps = 30.0;
   {
     const data::OutputReader reader(h5_path);
-    fps = reader.number_attribute("fps", fps);
+    fps = frame_rate_of(reader);
     try {
       scene = parse_scene(reader.attribute("scene"), h5_path);
     } catch (const UserError&) {  // a scene this version cannot read: defaults, no pole

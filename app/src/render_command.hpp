@@ -8,6 +8,11 @@
 #include "flagsim/core/scene.hpp"
 #include "flagsim/render/frame_renderer.hpp"
 #include "flagsim/render/image.hpp"
+#include "flagsim/render/video_writer.hpp"
+
+namespace flagsim::data {
+class OutputReader;
+}
 
 namespace flagsim::app {
 
@@ -27,7 +32,8 @@ struct RenderPlan {
   render::Style style = render::Style::kShaded;
   render::Image texture;  ///< empty: the built-in pattern
   bool pole = false;      ///< the cloth hangs from its left edge (flag.pin = "left")
-  double fps = 30.0;      ///< of the MP4: the run's frames per second
+  std::optional<render::Container> container;  ///< the video's; nullopt: PNG frames
+  double fps = 30.0;      ///< of the video: the frames' own rate
   CreatedDirectories directories;  ///< made for the output; removed again if left empty
 };
 
@@ -37,6 +43,10 @@ struct RenderPlan {
 /// and prepares the output destination. Throws UserError (exit 2) naming the
 /// bad flag, key or attribute; creates nothing on error.
 RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double fps);
+
+/// Frames per second of a file's frames: 1 / the median step of /frames/time
+/// (the scene's fps over output.every), else its `fps` attribute.
+double frame_rate_of(const data::OutputReader& reader);
 
 /// Draws every frame of the file `h5_path` as planned. Returns the summary line.
 std::string render_file(const std::string& h5_path, const RenderPlan& plan);

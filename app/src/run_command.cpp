@@ -75,7 +75,7 @@ int run_command(const RunOptions& options) {
   if (!options.render.empty()) {
     render_plan = plan_render({options.render, options.render_size, options.render_style,
                                options.render_texture, "--render"},
-                              &scene, scene.fps);
+                              &scene, scene.fps / scene.output.every);
   } else if (options.render_size || options.render_style || options.render_texture) {
     throw UserError("--size, --style and --texture go with --render OUT.mp4|DIR");
   }

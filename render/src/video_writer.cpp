@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <csignal>
 #include <cstdlib>
 #include <sstream>
+#include <vector>
 
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
@@ -23,31 +25,68 @@ std::string find_ffmpeg() {
   return "";
 }
 
-VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
+std::optional<Container> container_of(std::string_view path) {
+  const auto dot = path.rfind('.');
+  const auto slash = path.rfind('/');
+  if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash))
+    return std::nullopt;
+  std::string extension;
+  for (const char c : path.substr(dot + 1)) extension += char(std::tolower((unsigned char)c));
+  if (extension == "mp4") return Container::kMp4;
+  if (extension == "mkv") return Container::kMkv;
+  if (extension == "webm") return Container::kWebm;
+  if (extension == "gif") return Container::kGif;
+  return std::nullopt;
+}
+
+std::string_view to_string(Container container) {
+  switch (container) {
+    case Container::kMp4: return "H.264 MP4";
+    case Container::kMkv: return "H.264 Matroska";
+    case Container::kWebm: return "VP9 WebM";
+    case Container::kGif: return "GIF";
+  }
+  return "";
+}
+
+bool needs_even_size(Container container) { return container != Container::kGif; }
+
+VideoWriter::VideoWriter(const std::string& path, Container container, int width, int height,
+                         double fps)
     : path_(path), width_(width), height_(height) {
   const std::string ffmpeg = find_ffmpeg();
   if (ffmpeg.empty())
     throw UserError(fmt::format(
-        "{}: MP4 needs ffmpeg, which is not on PATH (apt-get install ffmpeg), or give -o a "
+        "{}: a video needs ffmpeg, which is not on PATH (apt-get install ffmpeg), or give -o a "
         "directory for PNG frames",
         path));
   std::signal(SIGPIPE, SIG_IGN);  // a dead ffmpeg is reported by fwrite, not by a signal
   // An argument vector, never a shell command: the path is one argument.
-  ffmpeg_ = std::make_unique<ChildProcess>(
-      std::vector<std::string>{ffmpeg,      "-loglevel",
-                               "error",     "-y",
-                               "-f",        "rawvideo",
-                               "-pix_fmt",  "rgb24",
-                               "-s",        fmt::format("{}x{}", width, height),
-                               "-r",        fmt::format("{}", fps),
-                               "-i",        "-",
-                               "-c:v",      "libx264",
-                               "-preset",   "veryfast",
-                               "-crf",      "20",
-                               "-pix_fmt",  "yuv420p",
-                               "-movflags", "+faststart",
-                               path},
-      true, false);
+  std::vector<std::string> args{ffmpeg,   "-loglevel", "error", "-y",    "-f",
+                                "rawvideo", "-pix_fmt", "rgb24", "-s",   fmt::format("{}x{}", width, height),
+                                "-r",     fmt::format("{}", fps), "-i", "-"};
+  const auto add = [&args](std::initializer_list<const char*> more) {
+    args.insert(args.end(), more.begin(), more.end());
+  };
+  switch (container) {
+    case Container::kMp4:
+      add({"-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p",
+           "-movflags", "+faststart"});
+      break;
+    case Container::kMkv:
+      add({"-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p"});
+      break;
+    case Container::kWebm:
+      add({"-c:v", "libvpx-vp9", "-b:v", "0", "-crf", "32", "-deadline", "realtime",
+           "-cpu-used", "8", "-row-mt", "1", "-pix_fmt", "yuv420p"});
+      break;
+    case Container::kGif:  // one palette for the whole clip, made from its frames
+      add({"-filter_complex", "[0:v]split[a][b];[a]palettegen[p];[b][p]paletteuse", "-loop",
+           "0"});
+      break;
+  }
+  args.push_back(path);
+  ffmpeg_ = std::make_unique<ChildProcess>(std::move(args), true, false);
   if (!ffmpeg_->valid()) throw IoError(fmt::format("{}: cannot start ffmpeg", path));
   pipe_ = ffmpeg_->input();
 }

@@ -176,7 +176,7 @@ const std::vector<BadInput>& cases() {
       {"run_render_odd_mp4",
        kBase,
        {"run", "SCENE", "--render", "movie.mp4", "--size", "641x360"},
-       "--size 641x360: an MP4 (H.264, yuv420p) needs an even width and height"},
+       "--size 641x360: H.264 MP4 (yuv420p) needs an even width and height"},
       {"run_render_unknown_style",
        kBase,
        {"run", "SCENE", "--render", "frames", "--style", "sketch"},

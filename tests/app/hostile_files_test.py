@@ -89,9 +89,15 @@ with tempfile.TemporaryDirectory() as tmp:
             expect_refused(["render", name, "-o", "new/out.mp4", "--size", "64x64"], tmp, words,
                            f"render {name}")
 
-    # A frame rate no video can have is bad input, not an ffmpeg failure (exit 4).
+    # A frame rate no video can have is bad input, not an ffmpeg failure (exit 4). A video's
+    # rate comes from the frames' times; only where those say nothing (all equal) from the
+    # `fps` attribute.
+    def lying_rate(f, fps):
+        f.attrs["fps"] = fps
+        f["/frames/time"][...] = 0.0
+
     for fps in (0.0, float("nan"), -5.0, 1e9):
-        name = variant(tmp, f"fps{fps}.h5", lambda f: f.attrs.__setitem__("fps", fps))
+        name = variant(tmp, f"fps{fps}.h5", lambda f: lying_rate(f, fps))
         expect_refused(["render", name, "-o", "new/out.mp4", "--size", "64x64"], tmp,
                        "frames per second", f"render fps {fps}")
     # PNG frames need no frame rate: the same file renders.

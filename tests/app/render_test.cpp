@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "process.hpp"
 #include "temp_dir.hpp"
@@ -57,6 +60,56 @@ TEST(Render, Mp4ThroughFfmpeg) {
   const std::vector<char> mp4 = bytes(dir.file("movie/flag.mp4"));
   ASSERT_GT(mp4.size(), 100u);
   EXPECT_EQ(std::string(mp4.begin() + 4, mp4.begin() + 8), "ftyp");  // an ISO media file
+}
+
+// The containers users ask for, each what its name says (magic bytes), and a
+// video's frame rate from its frames' times: a run writing every 3rd frame of
+// 30 fps has frames 0.1 s apart, so its video is 10 fps (ffprobe says so).
+TEST(Render, VideoContainersAndTheirFrameRate) {
+  TempDir dir;
+  ASSERT_EQ(run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "13", "--set",
+                          "output.every=3", "--quiet", "-o", "r.h5"},
+                         dir.path())
+                .exit_code,
+            0);
+  const std::vector<std::pair<std::string, std::string>> videos = {
+      {"v.mp4", std::string("ftyp")},
+      {"v.mkv", std::string("\x1a\x45\xdf\xa3")},
+      {"v.webm", std::string("\x1a\x45\xdf\xa3")},
+      {"v.gif", std::string("GIF89a")}};
+  for (const auto& [name, magic] : videos) {
+    const ProcessResult result =
+        run_flag_sim({"render", "r.h5", "-o", name, "--size", "160x90"}, dir.path());
+    ASSERT_EQ(result.exit_code, 0) << name << result.err;
+    const std::vector<char> file = bytes(dir.file(name));
+    ASSERT_GT(file.size(), 16u) << name;
+    const std::size_t at = name == "v.mp4" ? 4 : 0;
+    EXPECT_EQ(std::string(file.begin() + long(at), file.begin() + long(at + magic.size())), magic)
+        << name;
+    const ProcessResult probe =
+        run_process("/usr/bin/ffprobe", {"-v", "error", "-select_streams", "v", "-show_entries",
+                                         "stream=r_frame_rate", "-of", "csv=p=0", name},
+                    dir.path());
+    EXPECT_EQ(probe.out, "10/1\n") << name << probe.err;
+  }
+}
+
+// A name with another extension is refused, not made into a directory of
+// PNGs called run.avi; a trailing '/' makes any name a directory.
+TEST(Render, AnUnknownVideoExtensionIsRefused) {
+  TempDir dir;
+  ASSERT_EQ(run_flag_sim(kSmallRun, dir.path()).exit_code, 0);
+  const ProcessResult refused =
+      run_flag_sim({"render", "r.h5", "-o", "run.avi", "--size", "160x90"}, dir.path());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("error: -o run.avi: '.avi' is not a video flag-sim writes"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir.file("run.avi")));
+  const ProcessResult frames =
+      run_flag_sim({"render", "r.h5", "-o", "frames.v2/", "--size", "160x90"}, dir.path());
+  EXPECT_EQ(frames.exit_code, 0) << frames.err;
+  EXPECT_TRUE(fs::exists(dir.file("frames.v2/frame_00003.png")));
 }
 
 }  // namespace

@@ -1,9 +1,12 @@
 #pragma once
-// An H.264 MP4 made by piping raw RGB frames to ffmpeg (libx264, yuv420p, so
-// that common players open it).
+// A video made by piping raw RGB frames to ffmpeg, in the containers users
+// ask for: MP4 and Matroska (H.264, yuv420p, so that common players open
+// them), WebM (VP9) and GIF (a palette made from the frames).
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/render/image.hpp"
@@ -13,10 +16,21 @@ namespace flagsim::render {
 /// The ffmpeg executable on PATH, or "" when there is none.
 std::string find_ffmpeg();
 
+enum class Container { kMp4, kMkv, kWebm, kGif };
+
+/// The container a path's extension names (.mp4, .mkv, .webm, .gif, any
+/// case), or nullopt.
+std::optional<Container> container_of(std::string_view path);
+/// "H.264 MP4", ...: for messages and the render summary.
+std::string_view to_string(Container container);
+/// Whether the container's encoding needs an even width and height (yuv420p).
+bool needs_even_size(Container container);
+
 class VideoWriter {
  public:
-  /// Starts ffmpeg writing `path`. Throws UserError when ffmpeg is not on PATH.
-  VideoWriter(const std::string& path, int width, int height, double fps);
+  /// Starts ffmpeg writing `path` in `container`. Throws UserError when
+  /// ffmpeg is not on PATH.
+  VideoWriter(const std::string& path, Container container, int width, int height, double fps);
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
