@@ -30,7 +30,7 @@ Scene load_scene(const std::string& scene_path, std::span<const Override> overri
 Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides);
 
 int run_command(const RunOptions& options);
-int validate_command(const std::string& scene_path);
+int validate_command(const std::string& scene_path, const std::vector<std::string>& sets);
 int info_command(const std::string& path);
 int scene_command(bool print_default);
 struct CompareOptions {

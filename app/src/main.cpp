@@ -2,10 +2,13 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <string_view>
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
+#include "flagsim/core/near_miss.hpp"
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "render_command.hpp"
@@ -32,7 +35,8 @@ void add_measure_options(CLI::App* cmd, std::string& scene, std::optional<long l
 
 int main(int argc, char** argv) {
   flagsim::data::skip_hdf5_exit_cleanup();
-  CLI::App cli{"flag-sim: flag and cloth simulation (Agui, Nishii & Nakajima 1990 hybrid)"};
+  CLI::App cli{"flag-sim: flag and cloth simulation (Agui, Nishii & Nakajima 1990 hybrid)",
+               "flag-sim"};
   cli.set_version_flag("--version", std::string(flagsim::version()));
   cli.require_subcommand(1);
 
@@ -52,8 +56,10 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("-q,--quiet", run.quiet, "No progress line, only the summary");
 
   std::string validate_path;
+  std::vector<std::string> validate_sets;
   CLI::App* validate_cmd = cli.add_subcommand("validate", "Check a scene file without running it");
   validate_cmd->add_option("scene", validate_path, "Scene file (TOML)")->required();
+  validate_cmd->add_option("--set", validate_sets, "Override a scene key: KEY=VALUE (TOML value)");
 
   std::string info_path;
   CLI::App* info_cmd = cli.add_subcommand("info", "Summarise an output file");
@@ -98,6 +104,34 @@ int main(int argc, char** argv) {
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
   std::vector<std::string> arguments(argv, argv + argc);
 
+  // `flag-sim help [COMMAND]`, and a misspelt command named as such (CLI11
+  // would say only "A subcommand is required").
+  std::vector<std::string_view> commands;
+  for (const CLI::App* sub : cli.get_subcommands([](const CLI::App*) { return true; }))
+    commands.push_back(sub->get_name());
+  if (argc >= 2 && std::string_view(argv[1]) == "help") {
+    if (argc == 2) {
+      fmt::print("{}", cli.help());
+      return int(ExitCode::kSuccess);
+    }
+    for (CLI::App* sub : cli.get_subcommands([](const CLI::App*) { return true; }))
+      if (sub->get_name() == argv[2]) {
+        fmt::print("{}", sub->help());
+        return int(ExitCode::kSuccess);
+      }
+  }
+  if (argc >= 2 && argv[1][0] != '-' &&
+      std::find(commands.begin(), commands.end(), std::string_view(argv[1])) == commands.end()) {
+    const std::string typed = argc >= 2 && std::string_view(argv[1]) == "help" && argc >= 3
+                                  ? std::string(argv[2])
+                                  : std::string(argv[1]);
+    commands.push_back("help");
+    const std::string guess = flagsim::detail::closest_name(typed, commands);
+    return fail(ExitCode::kBadInput,
+                fmt::format("unknown command '{}'{} (see flag-sim --help)", flagsim::printable(typed),
+                            guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
+  }
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -112,7 +146,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*run_cmd) return flagsim::app::run_command(run);
-    if (*validate_cmd) return flagsim::app::validate_command(validate_path);
+    if (*validate_cmd) return flagsim::app::validate_command(validate_path, validate_sets);
     if (*info_cmd) return flagsim::app::info_command(info_path);
     if (*scene_cmd) return flagsim::app::scene_command(print_default);
     if (*render_cmd) return flagsim::app::render_command(render_input, render);

@@ -11,10 +11,16 @@ Progress::Progress(bool enabled, int total_frames)
 
 void Progress::update(int frame, double time_s, double ms_per_frame) {
   if (!enabled_) return;
+  constexpr auto kWindow = std::chrono::seconds(3);
   const auto now = std::chrono::steady_clock::now();
+  recent_.emplace_back(now, frame);
+  while (recent_.size() > 2 && now - recent_[1].first > kWindow) recent_.pop_front();
   if (drawn_ && now - last_draw_ < std::chrono::milliseconds(200)) return;
   last_draw_ = now;
   drawn_ = true;
+  const auto& [then, first_frame] = recent_.front();
+  const double window_s = std::chrono::duration<double>(now - then).count();
+  if (frame > first_frame && window_s > 0.0) ms_per_frame = 1e3 * window_s / (frame - first_frame);
   const double eta_s = (total_frames_ - 1 - frame) * ms_per_frame / 1000.0;
   fmt::print(stderr, "\rframe {}/{}  t = {:.2f} s  {:.1f} ms/frame  ETA {:.0f} s   ", frame + 1,
              total_frames_, time_s, ms_per_frame, eta_s);

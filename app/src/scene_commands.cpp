@@ -17,8 +17,8 @@ Scene load_scene(const std::string& scene_path, const std::vector<std::string>& 
   return load_scene(scene_path, set_overrides(overrides));
 }
 
-int validate_command(const std::string& scene_path) {
-  const Scene scene = load_scene(scene_path, std::span<const Override>{});
+int validate_command(const std::string& scene_path, const std::vector<std::string>& sets) {
+  const Scene scene = load_scene(scene_path, sets);
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   std::string stepping;
   for (const auto& [name, value] : simulation->numbers())

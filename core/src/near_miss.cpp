@@ -1,4 +1,4 @@
-#include "near_miss.hpp"
+#include "flagsim/core/near_miss.hpp"
 
 #include <algorithm>
 #include <vector>

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
-#include "near_miss.hpp"
+#include "flagsim/core/near_miss.hpp"
 
 namespace flagsim::detail {
 namespace {

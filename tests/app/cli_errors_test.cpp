@@ -193,6 +193,19 @@ const std::vector<BadInput>& cases() {
        kBase,
        {"run", "SCENE", "--render", "scene.toml/frames"},
        "--render scene.toml/frames: cannot write to scene.toml/frames"},
+      {"misspelt_command", "", {"runn"}, "unknown command 'runn' (did you mean 'run'?)"},
+      {"help_for_a_misspelt_command",
+       "",
+       {"help", "rnder"},
+       "unknown command 'rnder' (did you mean 'render'?)"},
+      {"validate_with_a_bad_set",
+       kBase,
+       {"validate", "SCENE", "--set", "flag.fine=[1,1]"},
+       "--set flag.fine=[1,1]: flag.fine: expected [J, K] nodes"},
+      {"render_unknown_container",
+       kBase,
+       {"run", "SCENE", "--render", "movie.avi"},
+       "--render movie.avi: '.avi' is not a video flag-sim writes"},
       {"size_without_render",
        kBase,
        {"run", "SCENE", "--size", "640x360"},
@@ -276,6 +289,22 @@ INSTANTIATE_TEST_SUITE_P(Cases, BadInputTest, ::testing::ValuesIn(cases()),
 
 TEST(BadInput, AtLeastTwentyCases) {
   EXPECT_GE(cases().size(), 20u);
+}
+
+// `flag-sim help` and `help COMMAND` print the usage, exit 0; validate takes --set like run.
+TEST(Help, PrintsTheUsageOfTheProgramAndOfACommand) {
+  const ProcessResult all = run_flag_sim({"help"});
+  EXPECT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_NE(all.out.find("Usage: flag-sim"), std::string::npos) << all.out;
+  const ProcessResult render = run_flag_sim({"help", "render"});
+  EXPECT_EQ(render.exit_code, 0) << render.err;
+  EXPECT_NE(render.out.find("--size"), std::string::npos) << render.out;
+  TempDir dir;
+  dir.write("s.toml", "[scene]\nmode = \"hybrid\"\n[flag]\nfine = [17, 25]\ncoarse = [9, 13]\n");
+  const ProcessResult validated =
+      run_flag_sim({"validate", "s.toml", "--set", "flag.fine=[33,49]"}, dir.path());
+  EXPECT_EQ(validated.exit_code, 0) << validated.err;
+  EXPECT_NE(validated.out.find("33 x 49 nodes"), std::string::npos) << validated.out;
 }
 
 }  // namespace
