@@ -31,7 +31,8 @@ Scene load_scene(const std::string& scene_path, const std::vector<std::string>& 
 
 int run_command(const RunOptions& options);
 int validate_command(const std::string& scene_path, const std::vector<std::string>& sets);
-int info_command(const std::string& path);
+/// `info`: the run in `path`, as text or (json) as one JSON object.
+int info_command(const std::string& path, bool json);
 int scene_command(bool print_default);
 struct CompareOptions {
   std::string scene_path;

@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
   std::string info_path;
   CLI::App* info_cmd = cli.add_subcommand("info", "Summarise an output file");
   info_cmd->add_option("file", info_path, "flag-sim output (.h5)")->required();
+  bool info_json = false;
+  info_cmd->add_flag("--json", info_json, "Everything info prints, as one JSON object");
 
   bool print_default = false;
   CLI::App* scene_cmd = cli.add_subcommand("scene", "Print a scene");
@@ -147,7 +149,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return flagsim::app::run_command(run);
     if (*validate_cmd) return flagsim::app::validate_command(validate_path, validate_sets);
-    if (*info_cmd) return flagsim::app::info_command(info_path);
+    if (*info_cmd) return flagsim::app::info_command(info_path, info_json);
     if (*scene_cmd) return flagsim::app::scene_command(print_default);
     if (*render_cmd) return flagsim::app::render_command(render_input, render);
     if (*compare_cmd) return flagsim::app::compare_command(compare);
