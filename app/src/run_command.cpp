@@ -208,6 +208,7 @@ int run_command(const RunOptions& options) {
   fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
              status, writer.frames_written(), lattice.rows, lattice.cols, to_string(scene.mode),
              ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
+  for (const std::string& note : scene.notes) fmt::print("{}\n", note);
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   if (unconverged_frames > 0)
     fmt::print(

@@ -27,6 +27,7 @@ int validate_command(const std::string& scene_path, const std::vector<std::strin
              scene_path, scene.name, to_string(scene.mode), scene.flag.fine_rows,
              scene.flag.fine_cols, scene.simulated_frames(), scene.fps,
              fmt::join(simulation->effects(), ","), stepping);
+  for (const std::string& note : scene.notes) fmt::print("{}\n", note);
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   return int(ExitCode::kSuccess);
 }

@@ -29,8 +29,8 @@ std::string dividing_sizes(int fine) {
 
 }  // namespace
 
-void check_consistency(const Scene& scene, const TableReader& root, const TableReader& scene_in,
-                       const TableReader& flag_in) {
+void check_consistency(Scene& scene, const TableReader& root, const TableReader& scene_in,
+                       const TableReader& flag_in, bool mode_from_command_line) {
   const FlagSpec& flag = scene.flag;
   if (double(flag.fine_rows) * flag.fine_cols > kMaxNodes)
     flag_in.fail("fine", fmt::format("{} x {} = {:.0f} nodes is more than the {:.0f} allowed",
@@ -55,6 +55,14 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
                   "hybrid mode needs flag.coarse = [Jc, Kc], the lattice the physics runs on");
   if (scene.pole && flag.pin == PinSet::kNone)
     fail_at(root, "pole", "a moving pole needs pinned nodes; set flag.pin (e.g. \"left\")");
+  // Tables the mode does not use: in a scene file, a mistake (each would be
+  // silently ignored); with the mode chosen on the command line (--mode,
+  // --set scene.mode, compare's reference), ignored and named in one note.
+  std::vector<std::string> unused;
+  const auto unused_table = [&](const char* table, const std::string& message) {
+    if (!mode_from_command_line) fail_at(root, table, message);
+    unused.push_back(fmt::format("[{}]", table));
+  };
   if (scene.mode == Mode::kInfill) {
     if (scene.keyframes.empty())
       scene_in.fail("mode", "infill mode needs [[keyframe]] tables with the corner positions");
@@ -66,23 +74,38 @@ void check_consistency(const Scene& scene, const TableReader& root, const TableR
                                                     {root.table().contains("solver"), "solver"}};
     for (const auto& [present, table] : physics)
       if (present)
-        fail_at(root, table,
-                "infill mode has no physics (the corners follow the keyframes); "
-                "remove the table or choose another scene.mode");
+        unused_table(table,
+                     "infill mode has no physics (the corners follow the keyframes); "
+                     "remove the table or choose another scene.mode");
+    if (mode_from_command_line) {
+      scene.wind.reset();
+      scene.pole.reset();
+      scene.bending.reset();
+      scene.gravity.reset();
+      scene.solver = Solver{};
+    }
     if (flag.coarse && (*flag.coarse)[0] * (*flag.coarse)[1] != 4)
       fail_at(root, "flag.coarse",
               "infill mode drives the 4 corners only: use [2, 2] or leave it out");
   } else if (!scene.keyframes.empty()) {
-    fail_at(root, "keyframe",
-            "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
-  } else if (scene.mode == Mode::kMassSpring && scene.infill) {
-    fail_at(root, "infill",
-            "[infill] settings need a mode with the infill (\"hybrid\" or \"infill\")");
-  } else if (scene.mode == Mode::kMassSpring && scene.wrinkles) {
-    fail_at(root, "wrinkles",
-            "wrinkles are made by the infill (paper 3.5); they need scene.mode = \"hybrid\" or "
-            "\"infill\"");
+    unused_table("keyframe",
+                 "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
+    scene.keyframes.clear();
   }
+  if (scene.mode == Mode::kMassSpring && scene.infill) {
+    unused_table("infill",
+                 "[infill] settings need a mode with the infill (\"hybrid\" or \"infill\")");
+    scene.infill.reset();
+  }
+  if (scene.mode == Mode::kMassSpring && scene.wrinkles) {
+    unused_table("wrinkles",
+                 "wrinkles are made by the infill (paper 3.5); they need scene.mode = \"hybrid\" "
+                 "or \"infill\"");
+    scene.wrinkles.reset();
+  }
+  if (!unused.empty())
+    scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored", to_string(scene.mode),
+                                      fmt::join(unused, ", ")));
 }
 
 }  // namespace flagsim::detail

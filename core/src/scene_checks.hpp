@@ -6,7 +6,10 @@
 namespace flagsim::detail {
 
 /// Cross-key consistency: lattice sizes, coarse divisibility, mode requirements.
-void check_consistency(const Scene& scene, const TableReader& root, const TableReader& scene_in,
-                       const TableReader& flag_in);
+/// Tables the scene's mode does not use are an error, unless the mode was
+/// chosen on the command line (`mode_from_command_line`): then they are
+/// dropped from `scene` and named in one of `scene.notes`.
+void check_consistency(Scene& scene, const TableReader& root, const TableReader& scene_in,
+                       const TableReader& flag_in, bool mode_from_command_line);
 
 }  // namespace flagsim::detail

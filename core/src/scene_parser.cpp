@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -391,7 +392,8 @@ void read_run_tables(TableReader& root, Scene& scene) {
   }
 }
 
-Scene build_scene(const toml::table& root, std::string_view source_path) {
+Scene build_scene(const toml::table& root, std::string_view source_path,
+                  bool mode_from_command_line) {
   Scene scene;
   const std::string top = fmt::format("{}:1:1", source_path);
   TableReader in(root, "", top);
@@ -411,7 +413,7 @@ Scene build_scene(const toml::table& root, std::string_view source_path) {
   read_run_tables(in, scene);
   in.finish(kAllKeys);
 
-  detail::check_consistency(scene, in, scene_in, flag_in);
+  detail::check_consistency(scene, in, scene_in, flag_in, mode_from_command_line);
 
   std::ostringstream text;
   text << toml::toml_formatter(root) << "\n";
@@ -460,8 +462,12 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_path,
   std::vector<std::pair<std::string, std::string>> labels;
   for (const Override& override : overrides)
     labels.emplace_back(apply_override(root, override), printable(override.typed, 300));
+  const bool mode_from_command_line =
+      std::any_of(labels.begin(), labels.end(), [](const auto& label) {
+        return label.first == "scene.mode" || label.first == "scene";
+      });
   const detail::OverrideLabels scope(std::move(labels));
-  return build_scene(root, source_path);
+  return build_scene(root, source_path, mode_from_command_line);
 }
 
 Scene load_scene_file(const std::string& path, std::span<const Override> overrides) {

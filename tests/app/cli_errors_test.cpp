@@ -123,9 +123,10 @@ const std::vector<BadInput>& cases() {
        {"run", "SCENE", "--set", "solver.backend=bulet"},
        "solver.backend: expected one of \"spring-damper\", \"bullet\", got \"bulet\""},
       {"infill_mode_with_wind",
-       with("[wind]\nvelocity = [1, 0, 0]\n[[keyframe]]\ntime = 0.0\ncorners = "
-            "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n"),
-       {"run", "SCENE", "--mode", "infill"},
+       "[scene]\nmode = \"infill\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\nfine = [9, 13]\n"
+       "[wind]\nvelocity = [1, 0, 0]\n[[keyframe]]\ntime = 0.0\ncorners = "
+       "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n",
+       {"run", "SCENE"},
        "wind: infill mode has no physics"},
       {"infill_mode_without_keyframes",
        kBase,

@@ -214,5 +214,31 @@ TEST(Info, JsonCarriesTheSameFacts) {
   EXPECT_EQ(parsed.out, "complete hybrid 425 4 1 4 4 True checks stretch\n") << json.out;
 }
 
+// A mode chosen on the command line runs any valid scene: the tables it does
+// not use are named in one note and ignored (in the file itself they stay an
+// error), so compare can run a hybrid scene with [wrinkles] against the
+// mass-spring reference.
+TEST(Run, AModeFromTheCommandLineIgnoresTablesItDoesNotUse) {
+  TempDir dir;
+  dir.write("w.toml",
+            "[scene]\nmode = \"hybrid\"\nduration = 0.1\n[flag]\nfine = [17, 25]\ncoarse = [9, 13]\n"
+            "[wrinkles]\nfiber_radius = 0.001\n[infill]\nsolver = \"smooth\"\n");
+  const ProcessResult run =
+      run_flag_sim({"run", "w.toml", "--mode", "mass-spring", "-o", "m.h5", "--quiet"}, dir.path());
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("note: mass-spring mode does not use [infill], [wrinkles]: ignored"),
+            std::string::npos)
+      << run.out;
+  const ProcessResult compared =
+      run_flag_sim({"compare", "w.toml", "--frames", "3", "-o", "c.csv"}, dir.path());
+  EXPECT_EQ(compared.exit_code, 0) << compared.err;
+  dir.write("strict.toml", "[scene]\nmode = \"mass-spring\"\n[wrinkles]\nfiber_radius = 0.001\n");
+  const ProcessResult strict = run_flag_sim({"validate", "strict.toml"}, dir.path());
+  EXPECT_EQ(strict.exit_code, 2);
+  EXPECT_NE(strict.err.find("strict.toml:3:1: wrinkles: wrinkles are made by the infill"),
+            std::string::npos)
+      << strict.err;
+}
+
 }  // namespace
 }  // namespace flagsim::test

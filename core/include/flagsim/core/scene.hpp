@@ -143,6 +143,9 @@ struct Scene {
 
   /// The scene as run (file plus --set overrides), as TOML text.
   std::string toml_text;
+  /// `note:` lines for the user about how the scene was read (tables a mode
+  /// chosen on the command line does not use); printed by validate and run.
+  std::vector<std::string> notes;
 
   /// Number of simulated frames, t = 0, 1/fps, ..., including the initial state.
   int simulated_frames() const;
