@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--size", render.size, "Image size WxH (default 1280x720)");
   render_cmd->add_option("--style", render.style, "wireframe, shaded (default) or textured");
   render_cmd->add_option("--texture", render.texture, "PNG for --style textured");
+  render_cmd->add_option("--frames", render.frames, "Frames A:B (A to B - 1, as numbered in the file)");
+  render_cmd->add_option("--camera", render.camera, "three-quarter (default), front or side");
 
   flagsim::app::CompareOptions compare;
   CLI::App* compare_cmd = cli.add_subcommand(

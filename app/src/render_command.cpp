@@ -40,6 +40,22 @@ std::pair<int, int> parse_size(const std::string& text) {
   return {w, h};
 }
 
+// --frames A:B as Python reads a slice: frames A .. B - 1, either side optional
+// (":20", "10:"), 0-based, as numbered in the file.
+std::pair<int, int> parse_range(const std::string& text) {
+  static const std::regex pattern(R"(^\s*(\d{0,9})\s*:\s*(\d{0,9})\s*$)");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern))
+    throw UserError(fmt::format("--frames {}: expected A:B (frames A to B - 1, e.g. 0:30, 10:, :20)",
+                                printable(text)));
+  const int first = match[1].length() ? std::stoi(match[1]) : 0;
+  const int last = match[2].length() ? std::stoi(match[2]) : -1;
+  if (last >= 0 && last <= first)
+    throw UserError(fmt::format("--frames {}: the range is empty (B must be more than A)",
+                                printable(text)));
+  return {first, last};
+}
+
 bool ends_with(const std::string& text, const std::string& tail) {
   return text.size() >= tail.size() &&
          text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
@@ -111,6 +127,14 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
           "--style {}: expected one of \"wireframe\", \"shaded\", \"textured\"", *request.style));
     plan.style = *style;
   }
+  if (request.camera) {
+    const auto view = render::parse_view(*request.camera);
+    if (!view)
+      throw UserError(fmt::format("--camera {}: expected one of \"three-quarter\", \"front\", \"side\"",
+                                  printable(*request.camera)));
+    plan.view = *view;
+  }
+  if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_range(*request.frames);
   if (plan.video && render::needs_even_size(*plan.container) && (plan.width % 2 || plan.height % 2))
     throw UserError(fmt::format("--size {}x{}: {} (yuv420p) needs an even width and height",
                                 plan.width, plan.height, render::to_string(*plan.container)));
@@ -147,7 +171,13 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   render::RenderOptions options;
   options.style = plan.style;
   options.texture = plan.texture;
-  options.camera = render::frame_bounds(bounds, double(plan.width) / plan.height);
+  options.camera = render::frame_bounds(bounds, double(plan.width) / plan.height, plan.view);
+  // The range, against the file (the camera above still frames the whole run).
+  const int first = plan.first_frame, last = plan.last_frame < 0 ? frames : plan.last_frame;
+  if (first >= frames || last > frames)
+    throw UserError(fmt::format("--frames {}:{}: {} has frames 0 to {}", first,
+                                plan.last_frame < 0 ? std::string() : std::to_string(last), h5_path,
+                                frames - 1));
   options.ground_y_m = std::min(0.0, bounds.low.y() - 0.05);
 
   const auto context = render::make_osmesa_context(plan.width, plan.height);
@@ -156,12 +186,12 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   if (plan.video)
     video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
   double draw_s = 0.0, encode_s = 0.0;
-  for (int t = 0; t < frames; ++t) {
+  for (int t = first; t < last; ++t) {
     if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
       throw Interrupted(
           fmt::format("rendering {} stopped by a signal after {} of {} frames; {} is "
                       "kept",
-                      plan.output, t, frames, h5_path));
+                      plan.output, t - first, last - first, h5_path));
     const std::vector<Vec3> positions = reader.positions(t);
     render::FrameView view{rows, cols, positions, std::nullopt};
     if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
@@ -180,9 +210,10 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   const Clock::time_point closing = Clock::now();
   if (video) video->finish();
   encode_s += std::chrono::duration<double>(Clock::now() - closing).count();
-  const double n = std::max(1, frames);
+  const double n = std::max(1, last - first);
   return fmt::format(
-      "rendered {} frames ({}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}", frames,
+      "rendered {} frames ({}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
+      last - first,
       render::to_string(plan.style), plan.width, plan.height, 1e3 * draw_s / n, 1e3 * encode_s / n,
       plan.video ? render::to_string(*plan.container) : "PNG", plan.output);
 }

@@ -6,6 +6,7 @@
 
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/scene.hpp"
+#include "flagsim/render/camera.hpp"
 #include "flagsim/render/frame_renderer.hpp"
 #include "flagsim/render/image.hpp"
 #include "flagsim/render/video_writer.hpp"
@@ -22,6 +23,8 @@ struct RenderRequest {
   std::optional<std::string> style;    ///< --style
   std::optional<std::string> texture;  ///< --texture PNG
   std::string output_flag = "-o";      ///< how the user gave `output`, for messages
+  std::optional<std::string> frames;   ///< --frames A:B (render only)
+  std::optional<std::string> camera;   ///< --camera three-quarter|front|side
 };
 
 /// Everything a render needs, checked before anything is written or run.
@@ -34,6 +37,9 @@ struct RenderPlan {
   bool pole = false;      ///< the cloth hangs from its left edge (flag.pin = "left")
   std::optional<render::Container> container;  ///< the video's; nullopt: PNG frames
   double fps = 30.0;      ///< of the video: the frames' own rate
+  render::View view = render::View::kThreeQuarter;
+  /// Frames first .. last - 1 are drawn (last -1: to the end), numbered as in the file.
+  int first_frame = 0, last_frame = -1;
   CreatedDirectories directories;  ///< made for the output; removed again if left empty
 };
 

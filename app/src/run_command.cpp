@@ -73,9 +73,13 @@ int run_command(const RunOptions& options) {
   // A render is checked before the run: a bad --size must not cost a simulation.
   std::optional<RenderPlan> render_plan;
   if (!options.render.empty()) {
-    render_plan = plan_render({options.render, options.render_size, options.render_style,
-                               options.render_texture, "--render"},
-                              &scene, scene.fps / scene.output.every);
+    RenderRequest request;
+    request.output = options.render;
+    request.size = options.render_size;
+    request.style = options.render_style;
+    request.texture = options.render_texture;
+    request.output_flag = "--render";
+    render_plan = plan_render(request, &scene, scene.fps / scene.output.every);
   } else if (options.render_size || options.render_style || options.render_texture) {
     throw UserError("--size, --style and --texture go with --render OUT.mp4|DIR");
   }

@@ -112,5 +112,40 @@ TEST(Render, AnUnknownVideoExtensionIsRefused) {
   EXPECT_TRUE(fs::exists(dir.file("frames.v2/frame_00003.png")));
 }
 
+// --frames A:B draws frames A .. B - 1 under their own numbers; --camera
+// picks the view (a side view is another image of the same frame); ranges
+// outside the file and unknown views are exit 2 and leave nothing.
+TEST(Render, AFrameRangeAndACameraView) {
+  TempDir dir;
+  ASSERT_EQ(run_flag_sim(kSmallRun, dir.path()).exit_code, 0);
+  const ProcessResult range = run_flag_sim(
+      {"render", "r.h5", "-o", "part", "--frames", "1:3", "--size", "160x90"}, dir.path());
+  ASSERT_EQ(range.exit_code, 0) << range.err;
+  EXPECT_NE(range.out.find("rendered 2 frames"), std::string::npos) << range.out;
+  EXPECT_FALSE(fs::exists(dir.file("part/frame_00000.png")));
+  EXPECT_TRUE(fs::exists(dir.file("part/frame_00001.png")));
+  EXPECT_TRUE(fs::exists(dir.file("part/frame_00002.png")));
+  EXPECT_FALSE(fs::exists(dir.file("part/frame_00003.png")));
+  ASSERT_EQ(run_flag_sim({"render", "r.h5", "-o", "side", "--frames", "1:2", "--camera", "side",
+                          "--size", "160x90"},
+                         dir.path())
+                .exit_code,
+            0);
+  EXPECT_NE(bytes(dir.file("side/frame_00001.png")), bytes(dir.file("part/frame_00001.png")));
+  for (const auto& [args, words] :
+       std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--frames", "2:9"}, "--frames 2:9: r.h5 has frames 0 to 3"},
+           {{"--frames", "3:1"}, "the range is empty"},
+           {{"--frames", "a:b"}, "expected A:B"},
+           {{"--camera", "top"}, "--camera top: expected one of"}}) {
+    std::vector<std::string> command = {"render", "r.h5", "-o", "bad", "--size", "160x90"};
+    command.insert(command.end(), args.begin(), args.end());
+    const ProcessResult result = run_flag_sim(command, dir.path());
+    EXPECT_EQ(result.exit_code, 2) << words;
+    EXPECT_NE(result.err.find(words), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(dir.file("bad"))) << words;
+  }
+}
+
 }  // namespace
 }  // namespace flagsim::test

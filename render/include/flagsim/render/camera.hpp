@@ -1,7 +1,9 @@
 #pragma once
 // Where the image is seen from: a pinhole camera (perspective, vertical field
 // of view), and the automatic framing of a whole run.
+#include <optional>
 #include <span>
+#include <string_view>
 
 #include "flagsim/core/vec3.hpp"
 
@@ -28,10 +30,18 @@ struct Bounds {
   bool empty() const { return low.x() > high.x(); }
 };
 
+/// Where the automatic camera looks from.
+enum class View {
+  kThreeQuarter,  ///< in front (+z), 20 degrees toward the fly end (+x), 12 above (default)
+  kFront,         ///< straight in front (+z)
+  kSide,          ///< from the fly end (+x), a little above: the flapping in profile
+};
+/// "three-quarter", "front" or "side"; nullopt otherwise.
+std::optional<View> parse_view(std::string_view name);
+
 /// A camera that sees all of `bounds` in an image of the given aspect
-/// (width / height): in front of the cloth (+z), a little to the fly side and
-/// above, looking at the centre of the bounds, the bounding sphere filling
-/// about 90% of the smaller field of view.
-Camera frame_bounds(const Bounds& bounds, double aspect);
+/// (width / height) from `view`, looking at the centre of the bounds, the
+/// bounding sphere filling about 90% of the smaller field of view.
+Camera frame_bounds(const Bounds& bounds, double aspect, View view = View::kThreeQuarter);
 
 }  // namespace flagsim::render
