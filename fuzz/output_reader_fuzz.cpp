@@ -35,12 +35,12 @@ void add_dataset(FuzzedDataProvider& in, hid_t file, const char* path) {
   for (int d = 0; d < rank; ++d) {
     dims[d] = in.ConsumeBool() ? in.ConsumeIntegralInRange<hsize_t>(0, 40)
                                : hsize_t(1) << in.ConsumeIntegralInRange(0, 40);
-    count = dims[d] != 0 && count > (hsize_t(1) << 62) / dims[d] ? hsize_t(1) << 62
-                                                                 : count * dims[d];
+    count =
+        dims[d] != 0 && count > (hsize_t(1) << 62) / dims[d] ? hsize_t(1) << 62 : count * dims[d];
   }
   const bool integer = in.ConsumeBool();
-  h5::Handle space = h5::dataspace(rank == 0 ? H5Screate(H5S_SCALAR)
-                                             : H5Screate_simple(rank, dims.data(), max_dims.data()));
+  h5::Handle space = h5::dataspace(
+      rank == 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(rank, dims.data(), max_dims.data()));
   h5::Handle props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
   if (rank > 0) H5Pset_chunk(props.get(), rank, chunk.data());
   h5::Handle set = h5::dataset(H5Dcreate2(file, path, integer ? H5T_STD_I32LE : H5T_IEEE_F32LE,
@@ -56,18 +56,18 @@ std::string write_file(FuzzedDataProvider& in) {
   h5::Handle file = h5::file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
   if (!file.valid()) return path;
   const hid_t root = file.get();
-  h5::write_string_attribute(root, "format",
-                             in.ConsumeBool() ? std::string(flagsim::data::kFormat)
-                                              : in.ConsumeRandomLengthString(16));
+  h5::write_string_attribute(
+      root, "format",
+      in.ConsumeBool() ? std::string(flagsim::data::kFormat) : in.ConsumeRandomLengthString(16));
   h5::write_double_attribute(root, "fps", in.ConsumeFloatingPoint<double>());
   h5::write_int_attribute(root, "seed", in.ConsumeIntegral<long long>());
   h5::write_string_attribute(root, "scene", in.ConsumeRandomLengthString(256));
   for (const char* group : {"/frames", "/lattice", "/coarse", "/stats"})
     if (in.ConsumeBool())
       h5::Handle(H5Gcreate2(root, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  for (const char* set : {"/frames/positions", "/frames/time", "/lattice/rest_positions",
-                          "/coarse/positions", "/coarse/rows", "/coarse/cols", "/stats/max_strain",
-                          "/stats/stage_seconds"})
+  for (const char* set :
+       {"/frames/positions", "/frames/time", "/lattice/rest_positions", "/coarse/positions",
+        "/coarse/rows", "/coarse/cols", "/stats/max_strain", "/stats/stage_seconds"})
     add_dataset(in, root, set);
   if (H5Lexists(root, "/stats", H5P_DEFAULT) > 0 &&
       H5Lexists(root, "/stats/stage_seconds", H5P_DEFAULT) > 0) {

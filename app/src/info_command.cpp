@@ -142,7 +142,9 @@ std::string json_string(const std::string& text) {
 }
 
 // A JSON number: shortest round-trip form; null for NaN and infinities.
-std::string json_number(double x) { return std::isfinite(x) ? fmt::format("{}", x) : "null"; }
+std::string json_number(double x) {
+  return std::isfinite(x) ? fmt::format("{}", x) : "null";
+}
 
 void print_json(const RunSummary& s) {
   std::vector<std::string> effects;
@@ -173,12 +175,12 @@ void print_json(const RunSummary& s) {
     field("strain", fmt::format("{{\"max\": {}, \"mean\": {}}}", json_number(s.max_strain),
                                 json_number(s.mean_strain)));
   if (s.has_infill)
-    field("infill", fmt::format("{{\"converged_frames\": {}, \"frames\": {}, "
-                                "\"median_iterations\": {}, \"coarse_offset_m\": {{\"median\": {}, "
-                                "\"max\": {}}}}}",
-                                s.converged_frames, s.infill_frames,
-                                json_number(s.median_iterations), json_number(s.median_offset_m),
-                                json_number(s.max_offset_m)));
+    field("infill",
+          fmt::format("{{\"converged_frames\": {}, \"frames\": {}, "
+                      "\"median_iterations\": {}, \"coarse_offset_m\": {{\"median\": {}, "
+                      "\"max\": {}}}}}",
+                      s.converged_frames, s.infill_frames, json_number(s.median_iterations),
+                      json_number(s.median_offset_m), json_number(s.max_offset_m)));
   if (s.has_timing) {
     std::vector<std::string> stages;
     for (const auto& [name, ms] : s.stage_ms)

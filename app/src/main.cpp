@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--frames", run.frames, "Number of frames to write, including t = 0");
   run_cmd->add_option("--seed", run.seed, "Override scene.seed");
   run_cmd->add_option("--set", run.sets, "Override a scene key: KEY=VALUE (TOML value)");
-  run_cmd->add_option("--render", run.render, "Also render the frames to OUT.mp4|.mkv|.webm|.gif or DIR (PNGs)");
+  run_cmd->add_option("--render", run.render,
+                      "Also render the frames to OUT.mp4|.mkv|.webm|.gif or DIR (PNGs)");
   run_cmd->add_option("--size", run.render_size, "Rendered image size WxH (default 1280x720)");
   run_cmd->add_option("--style", run.render_style, "wireframe, shaded (default) or textured");
   run_cmd->add_option("--texture", run.render_texture, "PNG for --style textured");
@@ -76,12 +77,15 @@ int main(int argc, char** argv) {
   CLI::App* render_cmd =
       cli.add_subcommand("render", "Draw the frames of an output file to PNGs or a video");
   render_cmd->add_option("file", render_input, "flag-sim output (.h5)")->required();
-  render_cmd->add_option("-o,--output", render.output, "OUT.mp4|.mkv|.webm|.gif, or a directory for PNG frames")
+  render_cmd
+      ->add_option("-o,--output", render.output,
+                   "OUT.mp4|.mkv|.webm|.gif, or a directory for PNG frames")
       ->required();
   render_cmd->add_option("--size", render.size, "Image size WxH (default 1280x720)");
   render_cmd->add_option("--style", render.style, "wireframe, shaded (default) or textured");
   render_cmd->add_option("--texture", render.texture, "PNG for --style textured");
-  render_cmd->add_option("--frames", render.frames, "Frames A:B (A to B - 1, as numbered in the file)");
+  render_cmd->add_option("--frames", render.frames,
+                         "Frames A:B (A to B - 1, as numbered in the file)");
   render_cmd->add_option("--camera", render.camera, "three-quarter (default), front or side");
 
   flagsim::app::CompareOptions compare;
@@ -131,9 +135,10 @@ int main(int argc, char** argv) {
                                   : std::string(argv[1]);
     commands.push_back("help");
     const std::string guess = flagsim::detail::closest_name(typed, commands);
-    return fail(ExitCode::kBadInput,
-                fmt::format("unknown command '{}'{} (see flag-sim --help)", flagsim::printable(typed),
-                            guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
+    return fail(
+        ExitCode::kBadInput,
+        fmt::format("unknown command '{}'{} (see flag-sim --help)", flagsim::printable(typed),
+                    guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
   }
 
   try {

@@ -11,8 +11,8 @@
 
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/limits.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "flagsim/core/limits.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/data/output_reader.hpp"
@@ -46,13 +46,13 @@ std::pair<int, int> parse_range(const std::string& text) {
   static const std::regex pattern(R"(^\s*(\d{0,9})\s*:\s*(\d{0,9})\s*$)");
   std::smatch match;
   if (!std::regex_match(text, match, pattern))
-    throw UserError(fmt::format("--frames {}: expected A:B (frames A to B - 1, e.g. 0:30, 10:, :20)",
-                                printable(text)));
+    throw UserError(fmt::format(
+        "--frames {}: expected A:B (frames A to B - 1, e.g. 0:30, 10:, :20)", printable(text)));
   const int first = match[1].length() ? std::stoi(match[1]) : 0;
   const int last = match[2].length() ? std::stoi(match[2]) : -1;
   if (last >= 0 && last <= first)
-    throw UserError(fmt::format("--frames {}: the range is empty (B must be more than A)",
-                                printable(text)));
+    throw UserError(
+        fmt::format("--frames {}: the range is empty (B must be more than A)", printable(text)));
   return {first, last};
 }
 
@@ -70,8 +70,8 @@ void prepare_directory(const fs::path& dir, const std::string& what,
   if (!dir.empty()) directories.create(dir.string(), error);
   const fs::path probe = dir.empty() ? fs::path(".") : dir;
   if (error || !fs::is_directory(probe) || access(probe.c_str(), W_OK) != 0)
-    throw UserError(fmt::format("{}: cannot write to {} (check the path and its permissions)",
-                                what, probe.string()));
+    throw UserError(fmt::format("{}: cannot write to {} (check the path and its permissions)", what,
+                                probe.string()));
 }
 
 }  // namespace
@@ -109,9 +109,10 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
           request.output_flag, plan.output, extension));
   }
   if (plan.video && !(fps > 0.0 && fps <= limits::kFps))
-    throw UserError(fmt::format("{} {}: the run's frames per second ({}) is not in (0, {}]: "
-                                "cannot time a video; render PNG frames to a directory instead",
-                                request.output_flag, plan.output, fps, limits::kFps));
+    throw UserError(
+        fmt::format("{} {}: the run's frames per second ({}) is not in (0, {}]: "
+                    "cannot time a video; render PNG frames to a directory instead",
+                    request.output_flag, plan.output, fps, limits::kFps));
   plan.fps = fps;
   plan.pole = scene && scene->flag.pin == PinSet::kLeft;
   if (scene_render) {
@@ -130,8 +131,9 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   if (request.camera) {
     const auto view = render::parse_view(*request.camera);
     if (!view)
-      throw UserError(fmt::format("--camera {}: expected one of \"three-quarter\", \"front\", \"side\"",
-                                  printable(*request.camera)));
+      throw UserError(
+          fmt::format("--camera {}: expected one of \"three-quarter\", \"front\", \"side\"",
+                      printable(*request.camera)));
     plan.view = *view;
   }
   if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_range(*request.frames);
@@ -155,7 +157,8 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
     if (fs::is_directory(plan.output))
       throw UserError(fmt::format("{} {}: is a directory", request.output_flag, plan.output));
   } else {
-    prepare_directory(fs::path(plan.output), request.output_flag + " " + plan.output, plan.directories);
+    prepare_directory(fs::path(plan.output), request.output_flag + " " + plan.output,
+                      plan.directories);
   }
   return plan;
 }
@@ -183,8 +186,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   const auto context = render::make_osmesa_context(plan.width, plan.height);
   render::FrameRenderer renderer(*context, options);
   std::optional<render::VideoWriter> video;
-  if (plan.video)
-    video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
+  if (plan.video) video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
   double draw_s = 0.0, encode_s = 0.0;
   for (int t = first; t < last; ++t) {
     if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
@@ -213,9 +215,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   const double n = std::max(1, last - first);
   return fmt::format(
       "rendered {} frames ({}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
-      last - first,
-      render::to_string(plan.style), plan.width, plan.height, 1e3 * draw_s / n, 1e3 * encode_s / n,
-      plan.video ? render::to_string(*plan.container) : "PNG", plan.output);
+      last - first, render::to_string(plan.style), plan.width, plan.height, 1e3 * draw_s / n,
+      1e3 * encode_s / n, plan.video ? render::to_string(*plan.container) : "PNG", plan.output);
 }
 
 int render_command(const std::string& h5_path, const RenderRequest& request) {

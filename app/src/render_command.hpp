@@ -36,7 +36,7 @@ struct RenderPlan {
   render::Image texture;  ///< empty: the built-in pattern
   bool pole = false;      ///< the cloth hangs from its left edge (flag.pin = "left")
   std::optional<render::Container> container;  ///< the video's; nullopt: PNG frames
-  double fps = 30.0;      ///< of the video: the frames' own rate
+  double fps = 30.0;                           ///< of the video: the frames' own rate
   render::View view = render::View::kThreeQuarter;
   /// Frames first .. last - 1 are drawn (last -1: to the end), numbered as in the file.
   int first_frame = 0, last_frame = -1;

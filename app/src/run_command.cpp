@@ -29,8 +29,8 @@ namespace {
 std::vector<Override> overrides_of(const RunOptions& options) {
   std::vector<Override> overrides = set_overrides(options.sets);
   if (options.mode)
-    overrides.push_back({fmt::format("scene.mode={}", toml_string(*options.mode)),
-                         "--mode " + *options.mode});
+    overrides.push_back(
+        {fmt::format("scene.mode={}", toml_string(*options.mode)), "--mode " + *options.mode});
   if (options.seed) {
     // As typed, not through a fixed-width parse that would clamp 2^64 - 1 to 2^63 - 1.
     const std::string& seed = *options.seed;

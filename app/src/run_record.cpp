@@ -39,7 +39,8 @@ bool frame_is_good(RunRecord& record, const Scene& scene, const std::optional<st
                    int frame) {
   if (!why) return true;
   record.status = "diverged";
-  record.status_reason = fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
+  record.status_reason =
+      fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
   return false;
 }
 

@@ -61,7 +61,9 @@ CreatedDirectories& CreatedDirectories::operator=(CreatedDirectories&& other) no
   return *this;
 }
 
-CreatedDirectories::~CreatedDirectories() { remove_empty(); }
+CreatedDirectories::~CreatedDirectories() {
+  remove_empty();
+}
 
 bool CreatedDirectories::create(const std::string& dir, std::error_code& error) {
   error.clear();

@@ -88,8 +88,9 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
       fail_at(root, "flag.coarse",
               "infill mode drives the 4 corners only: use [2, 2] or leave it out");
   } else if (!scene.keyframes.empty()) {
-    unused_table("keyframe",
-                 "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
+    unused_table(
+        "keyframe",
+        "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
     scene.keyframes.clear();
   }
   if (scene.mode == Mode::kMassSpring && scene.infill) {
@@ -104,8 +105,8 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
     scene.wrinkles.reset();
   }
   if (!unused.empty())
-    scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored", to_string(scene.mode),
-                                      fmt::join(unused, ", ")));
+    scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
+                                      to_string(scene.mode), fmt::join(unused, ", ")));
 }
 
 }  // namespace flagsim::detail

@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/limits.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "flagsim/core/limits.hpp"
 #include "scene_checks.hpp"
 #include "toml_reader.hpp"
 
@@ -378,7 +378,9 @@ void read_run_tables(TableReader& root, Scene& scene) {
     TableReader in(*t, "render", root.where_of("render"));
     Render render;
     render.style = in.choice("style", "shaded", {"wireframe", "shaded", "textured"});
-    if (auto size = in.int_pair("size", limits::kImageSideMin, limits::kImageSideMax, "[w, h] pixels")) render.size_px = *size;
+    if (auto size =
+            in.int_pair("size", limits::kImageSideMin, limits::kImageSideMax, "[w, h] pixels"))
+      render.size_px = *size;
     render.texture = in.string("texture", "");
     in.finish(kAllKeys);
     scene.render = render;
@@ -427,8 +429,10 @@ std::string toml_string(std::string_view text) {
   std::string quoted = "\"";
   for (const unsigned char c : text) {
     if (c == '"' || c == '\\') quoted += '\\';
-    if (c < 0x20 || c == 0x7f) quoted += fmt::format("\\u{:04x}", c);
-    else quoted += char(c);
+    if (c < 0x20 || c == 0x7f)
+      quoted += fmt::format("\\u{:04x}", c);
+    else
+      quoted += char(c);
   }
   return quoted + "\"";
 }
@@ -462,10 +466,9 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_path,
   std::vector<std::pair<std::string, std::string>> labels;
   for (const Override& override : overrides)
     labels.emplace_back(apply_override(root, override), printable(override.typed, 300));
-  const bool mode_from_command_line =
-      std::any_of(labels.begin(), labels.end(), [](const auto& label) {
-        return label.first == "scene.mode" || label.first == "scene";
-      });
+  const bool mode_from_command_line = std::any_of(
+      labels.begin(), labels.end(),
+      [](const auto& label) { return label.first == "scene.mode" || label.first == "scene"; });
   const detail::OverrideLabels scope(std::move(labels));
   return build_scene(root, source_path, mode_from_command_line);
 }

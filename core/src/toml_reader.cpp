@@ -18,7 +18,8 @@ std::string describe(const toml::node& node) {
   if (node.is_string()) return fmt::format("\"{}\"", *node.value<std::string>());
   if (const toml::array* array = node.as_array();
       array && array->size() <= 8 &&
-      std::all_of(array->begin(), array->end(), [](const toml::node& n) { return n.is_number(); })) {
+      std::all_of(array->begin(), array->end(),
+                  [](const toml::node& n) { return n.is_number(); })) {
     std::string text = "[";
     for (const toml::node& item : *array)
       text += fmt::format("{}{}", text.size() > 1 ? ", " : "", *item.value<double>());
@@ -30,8 +31,10 @@ std::string describe(const toml::node& node) {
   std::string text;
   for (const char c : out.str()) {
     const bool space = c == '\n' || c == '\r' || c == '\t' || c == ' ';
-    if (!space) text += c;
-    else if (!text.empty() && text.back() != ' ') text += ' ';
+    if (!space)
+      text += c;
+    else if (!text.empty() && text.back() != ' ')
+      text += ' ';
   }
   if (text.size() > 60) text = text.substr(0, 57) + "...";
   return text;

@@ -107,8 +107,8 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   std::error_code ec;
   if (target.has_parent_path()) impl_->directories.create(target.parent_path().string(), ec);
   if (fs::is_directory(target, ec))
-    throw UserError(fmt::format("{}: is a directory; give an output file name such as {}",
-                                path_, (target / "run.h5").lexically_normal().string()));
+    throw UserError(fmt::format("{}: is a directory; give an output file name such as {}", path_,
+                                (target / "run.h5").lexically_normal().string()));
   const std::string partial = partial_path();
   // A .partial left by a killed run is replaced; one that another run is
   // writing (HDF5 holds an exclusive lock on a file it writes) is not touched.

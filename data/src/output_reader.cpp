@@ -28,20 +28,22 @@ std::vector<double> read_all(hid_t file, const std::string& file_path, const cha
   h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 0 || rank > 4)
-    throw UserError(fmt::format("{}: {} has rank {}: not an output flag-sim wrote", file_path,
-                                path, rank));
+    throw UserError(
+        fmt::format("{}: {} has rank {}: not an output flag-sim wrote", file_path, path, rank));
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank), 0);
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   hsize_t count = 1;
   for (hsize_t d : dims) count = d != 0 && count > at_most / d ? at_most + 1 : count * d;
   if (count > at_most)
-    throw UserError(fmt::format("{}: {} declares more than the {} values its /frames/positions "
-                                "allows: not an output flag-sim wrote",
-                                file_path, path, at_most));
+    throw UserError(
+        fmt::format("{}: {} declares more than the {} values its /frames/positions "
+                    "allows: not an output flag-sim wrote",
+                    file_path, path, at_most));
   std::vector<double> values(count);
   if (count > 0 &&
       H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-    throw UserError(fmt::format("{}: cannot read {} (truncated or damaged file?)", file_path, path));
+    throw UserError(
+        fmt::format("{}: cannot read {} (truncated or damaged file?)", file_path, path));
   if (dims_out) *dims_out = dims;
   return values;
 }
@@ -143,7 +145,7 @@ std::vector<Vec3> OutputReader::positions(int frame) const {
 
 std::vector<Vec3> OutputReader::rest_positions() const {
   return to_vec3(read_all(impl_->file.get(), path_, "/lattice/rest_positions",
-                           hsize_t(rows_) * hsize_t(cols_) * 3));
+                          hsize_t(rows_) * hsize_t(cols_) * 3));
 }
 
 std::vector<Vec3> OutputReader::coarse_positions(int frame) const {
@@ -157,8 +159,9 @@ std::vector<Vec3> OutputReader::coarse_positions(int frame) const {
   if (H5Sget_simple_extent_ndims(file_space.get()) != 4 ||
       H5Sget_simple_extent_dims(file_space.get(), dims, nullptr) < 0 || dims[3] != 3 ||
       dims[1] > hsize_t(rows_) || dims[2] > hsize_t(cols_))
-    throw UserError(fmt::format("{}: /coarse/positions is not [T, Jc, Kc, 3] with Jc <= {}, Kc <= {}",
-                                path_, rows_, cols_));
+    throw UserError(
+        fmt::format("{}: /coarse/positions is not [T, Jc, Kc, 3] with Jc <= {}, Kc <= {}", path_,
+                    rows_, cols_));
   if (hsize_t(frame) >= dims[0]) return {};
   // One frame, as positions() reads: not the whole run for every frame.
   const hsize_t start[4] = {hsize_t(frame), 0, 0, 0};

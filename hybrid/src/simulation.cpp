@@ -6,9 +6,9 @@
 #include <numbers>
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
-#include "flagsim/core/divergence.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/initial_shape.hpp"
+#include "flagsim/core/divergence.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/keyframes.hpp"
 #include "flagsim/infill/strain_limit.hpp"
@@ -76,9 +76,8 @@ class DenseInfill {
       : lattice_(scene.fine_lattice()),
         solver_(infill::make_infill(
             lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
-            {infill_solver_of(scene),
-             paper_relax_sweeps_of(scene),
-             wrinkle_params(scene), scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
+            {infill_solver_of(scene), paper_relax_sweeps_of(scene), wrinkle_params(scene),
+             scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()) {
     positions_ = lattice_.rest_positions();
@@ -129,11 +128,9 @@ class DenseInfill {
 class InfillSimulation final : public Simulation {
  public:
   explicit InfillSimulation(const Scene& scene)
-      : scene_(scene),
-        dense_(scene, 2, 2),
-        mass_kg_(physics::make_cloth_model(scene).mass_kg) {
+      : scene_(scene), dense_(scene, 2, 2), mass_kg_(physics::make_cloth_model(scene).mass_kg) {
     dense_.hold_corners();  // the keyframes give them exactly
-    fill(0.0, nullptr);  // frame 0: the corners of the first keyframe
+    fill(0.0, nullptr);     // frame 0: the corners of the first keyframe
     dense_.forget_velocities();
   }
   const Lattice& lattice() const override { return dense_.lattice(); }

@@ -300,10 +300,10 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
     // The first round solves every fiber without checking first: nearly all
     // need a step then (a fiber that does not returns before its first one).
     const bool check = round > 1;
-    const bool rows_moved = project_family(true, positions_m, tolerance, steps_per_fiber,
-                                           &report.fiber_steps, check);
-    const bool cols_moved = project_family(false, positions_m, tolerance, steps_per_fiber,
-                                           &report.fiber_steps, check);
+    const bool rows_moved =
+        project_family(true, positions_m, tolerance, steps_per_fiber, &report.fiber_steps, check);
+    const bool cols_moved =
+        project_family(false, positions_m, tolerance, steps_per_fiber, &report.fiber_steps, check);
     if (!rows_moved && !cols_moved) {  // a whole round found nothing to move
       report.converged = true;
       return report;
@@ -327,9 +327,9 @@ double FiberProjection::worst_excess(std::span<const Vec3> positions_m) const {
         worst = std::max(worst, outside((positions_m[a + 1] - p).norm() / lattice_.spacing_x_m,
                                         row_bands_[std::size_t(j) * (K - 1) + std::size_t(k)]));
       if (j + 1 < J && !(held(a) && held(a + std::size_t(K))))
-        worst = std::max(worst,
-                         outside((positions_m[a + std::size_t(K)] - p).norm() / lattice_.spacing_y_m,
-                                 col_bands_[std::size_t(j) * K + std::size_t(k)]));
+        worst = std::max(
+            worst, outside((positions_m[a + std::size_t(K)] - p).norm() / lattice_.spacing_y_m,
+                           col_bands_[std::size_t(j) * K + std::size_t(k)]));
     }
   return worst;
 }

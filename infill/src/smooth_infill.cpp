@@ -208,8 +208,7 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
     const double* a = &along_[std::size_t(ja) * std::size_t(K - 1)];
     const double* b = &along_[std::size_t(jb) * std::size_t(K - 1)];
     LinkBand* out = &rows[std::size_t(j) * std::size_t(K - 1)];
-    for (int k = 0; k + 1 < K; ++k)
-      out[k] = {1.0 - kBand, upper((1.0 - tj) * a[k] + tj * b[k])};
+    for (int k = 0; k + 1 < K; ++k) out[k] = {1.0 - kBand, upper((1.0 - tj) * a[k] + tj * b[k])};
   }
   // Column links: coarse column links lie on coarse columns kc, midpoints at jc + 1/2.
   for (int j = 0; j + 1 < J; ++j) {

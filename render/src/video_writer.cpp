@@ -41,15 +41,21 @@ std::optional<Container> container_of(std::string_view path) {
 
 std::string_view to_string(Container container) {
   switch (container) {
-    case Container::kMp4: return "H.264 MP4";
-    case Container::kMkv: return "H.264 Matroska";
-    case Container::kWebm: return "VP9 WebM";
-    case Container::kGif: return "GIF";
+    case Container::kMp4:
+      return "H.264 MP4";
+    case Container::kMkv:
+      return "H.264 Matroska";
+    case Container::kWebm:
+      return "VP9 WebM";
+    case Container::kGif:
+      return "GIF";
   }
   return "";
 }
 
-bool needs_even_size(Container container) { return container != Container::kGif; }
+bool needs_even_size(Container container) {
+  return container != Container::kGif;
+}
 
 VideoWriter::VideoWriter(const std::string& path, Container container, int width, int height,
                          double fps)
@@ -62,9 +68,13 @@ VideoWriter::VideoWriter(const std::string& path, Container container, int width
         path));
   std::signal(SIGPIPE, SIG_IGN);  // a dead ffmpeg is reported by fwrite, not by a signal
   // An argument vector, never a shell command: the path is one argument.
-  std::vector<std::string> args{ffmpeg,   "-loglevel", "error", "-y",    "-f",
-                                "rawvideo", "-pix_fmt", "rgb24", "-s",   fmt::format("{}x{}", width, height),
-                                "-r",     fmt::format("{}", fps), "-i", "-"};
+  std::vector<std::string> args{ffmpeg,     "-loglevel",
+                                "error",    "-y",
+                                "-f",       "rawvideo",
+                                "-pix_fmt", "rgb24",
+                                "-s",       fmt::format("{}x{}", width, height),
+                                "-r",       fmt::format("{}", fps),
+                                "-i",       "-"};
   const auto add = [&args](std::initializer_list<const char*> more) {
     args.insert(args.end(), more.begin(), more.end());
   };
@@ -77,12 +87,11 @@ VideoWriter::VideoWriter(const std::string& path, Container container, int width
       add({"-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p"});
       break;
     case Container::kWebm:
-      add({"-c:v", "libvpx-vp9", "-b:v", "0", "-crf", "32", "-deadline", "realtime",
-           "-cpu-used", "8", "-row-mt", "1", "-pix_fmt", "yuv420p"});
+      add({"-c:v", "libvpx-vp9", "-b:v", "0", "-crf", "32", "-deadline", "realtime", "-cpu-used",
+           "8", "-row-mt", "1", "-pix_fmt", "yuv420p"});
       break;
     case Container::kGif:  // one palette for the whole clip, made from its frames
-      add({"-filter_complex", "[0:v]split[a][b];[a]palettegen[p];[b][p]paletteuse", "-loop",
-           "0"});
+      add({"-filter_complex", "[0:v]split[a][b];[a]palettegen[p];[b][p]paletteuse", "-loop", "0"});
       break;
   }
   args.push_back(path);

@@ -312,10 +312,10 @@ TEST(DataSafety, InfillCornersTheFlagCannotSpanAreRefusedAndBigJumpsAreBounded) 
       "[[keyframe]]\ntime = 0.0\ncorners = [[0, 2, 0], [1.5, 2, 0], [0, 1, 0], [1.5, 1, 0]]\n"
       "[[keyframe]]\ntime = 0.034\n";
   dir.write("far.toml", head + "corners = [[0, 2, 0], [1e6, 2, 0], [0, 1, 0], [1e6, 1, 0]]\n");
-  dir.write("apart.toml",
-            head + "corners = [[0, 2, 0], [5000, 2, 0], [0, 1, 0], [5000, 1, 0]]\n");
-  dir.write("jump.toml", head + "corners = [[5000, 2, 0], [5001.5, 2, 0], [5000, 1, 0], "
-                                "[5001.5, 1, 0]]\n");
+  dir.write("apart.toml", head + "corners = [[0, 2, 0], [5000, 2, 0], [0, 1, 0], [5000, 1, 0]]\n");
+  dir.write("jump.toml", head +
+                             "corners = [[5000, 2, 0], [5001.5, 2, 0], [5000, 1, 0], "
+                             "[5001.5, 1, 0]]\n");
   expect_refused(run_flag_sim({"run", "far.toml", "-o", "x.h5"}, dir.path()),
                  "each in [-10000, 10000], got [1000000, 2, 0]", "a million metres");
   expect_refused(run_flag_sim({"run", "apart.toml", "-o", "x.h5"}, dir.path()),
@@ -356,9 +356,9 @@ TEST(DataSafety, AFailedCommandLeavesNoDirectoriesBehind) {
 TEST(DataSafety, ImageSizesHaveOneLimit) {
   TempDir dir;
   dir.write("s.toml", kTiny);
-  expect_refused(run_flag_sim({"run", "s.toml", "--set", "render.size=[16384,16]", "-o", "x.h5"},
-                              dir.path()),
-                 "render.size: expected [w, h] pixels, two integers in [16, 8192]", "[render] size");
+  expect_refused(
+      run_flag_sim({"run", "s.toml", "--set", "render.size=[16384,16]", "-o", "x.h5"}, dir.path()),
+      "render.size: expected [w, h] pixels, two integers in [16, 8192]", "[render] size");
   expect_refused(
       run_flag_sim({"run", "s.toml", "-o", "x.h5", "--render", "f", "--size", "16384x16"},
                    dir.path()),
@@ -372,9 +372,9 @@ TEST(DataSafety, ImageSizesHaveOneLimit) {
 TEST(DataSafety, AnInfillFailureIsNotReportedAsTheClothDiverging) {
   TempDir dir;
   dir.write("s.toml", kTiny);
-  const std::vector<std::string> base = {"run",   "s.toml", "--set", "flag.fine=[2,1025]",
-                                         "--set", "flag.coarse=[2,2]", "--frames", "3",
-                                         "--quiet"};
+  const std::vector<std::string> base = {
+      "run",      "s.toml", "--set",  "flag.fine=[2,1025]", "--set", "flag.coarse=[2,2]",
+      "--frames", "3",      "--quiet"};
   std::vector<std::string> smooth = base, paper = base;
   smooth.insert(smooth.end(), {"-o", "smooth.h5"});
   paper.insert(paper.end(), {"-o", "paper.h5", "--set", "infill.solver=\"paper\"", "--set",

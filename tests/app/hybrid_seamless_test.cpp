@@ -55,7 +55,8 @@ ImprintStats imprint_of(const data::OutputReader& reader) {
   EXPECT_FALSE(ratios.empty());
   if (ratios.empty()) return {};
   std::sort(ratios.begin(), ratios.end());
-  const double above = double(ratios.end() - std::upper_bound(ratios.begin(), ratios.end(), kImprint));
+  const double above =
+      double(ratios.end() - std::upper_bound(ratios.begin(), ratios.end(), kImprint));
   return {ratios[ratios.size() / 2], ratios.back(), above / double(ratios.size())};
 }
 

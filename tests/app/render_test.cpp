@@ -86,10 +86,10 @@ TEST(Render, VideoContainersAndTheirFrameRate) {
     const std::size_t at = name == "v.mp4" ? 4 : 0;
     EXPECT_EQ(std::string(file.begin() + long(at), file.begin() + long(at + magic.size())), magic)
         << name;
-    const ProcessResult probe =
-        run_process("/usr/bin/ffprobe", {"-v", "error", "-select_streams", "v", "-show_entries",
-                                         "stream=r_frame_rate", "-of", "csv=p=0", name},
-                    dir.path());
+    const ProcessResult probe = run_process("/usr/bin/ffprobe",
+                                            {"-v", "error", "-select_streams", "v", "-show_entries",
+                                             "stream=r_frame_rate", "-of", "csv=p=0", name},
+                                            dir.path());
     EXPECT_EQ(probe.out, "10/1\n") << name << probe.err;
   }
 }
@@ -132,8 +132,7 @@ TEST(Render, AFrameRangeAndACameraView) {
                 .exit_code,
             0);
   EXPECT_NE(bytes(dir.file("side/frame_00001.png")), bytes(dir.file("part/frame_00001.png")));
-  for (const auto& [args, words] :
-       std::vector<std::pair<std::vector<std::string>, std::string>>{
+  for (const auto& [args, words] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--frames", "2:9"}, "--frames 2:9: r.h5 has frames 0 to 3"},
            {{"--frames", "3:1"}, "the range is empty"},
            {{"--frames", "a:b"}, "expected A:B"},

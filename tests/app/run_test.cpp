@@ -193,23 +193,23 @@ TEST(Info, SummarisesARun) {
 // (Python's json here), with the hybrid's infill account.
 TEST(Info, JsonCarriesTheSameFacts) {
   TempDir dir;
-  ASSERT_EQ(run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "4", "-o", "h.h5",
-                          "--quiet"},
-                         dir.path())
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "4", "-o", "h.h5", "--quiet"},
+                   dir.path())
+          .exit_code,
+      0);
   const ProcessResult json = run_flag_sim({"info", "h.h5", "--json"}, dir.path());
   ASSERT_EQ(json.exit_code, 0) << json.err;
   dir.write("info.json", json.out);
-  const ProcessResult parsed = run_process(
-      "/usr/bin/python3",
-      {"-c",
-       "import json, sys; d = json.load(open(sys.argv[1])); "
-       "print(d['status'], d['mode'], d['lattice']['nodes'], d['frames'], d['seed'], "
-       "d['infill']['frames'], d['infill']['converged_frames'], "
-       "d['strain']['max'] < 0.01, sorted(d['stage_ms'])[0], d['effects'][0])",
-       "info.json"},
-      dir.path());
+  const ProcessResult parsed =
+      run_process("/usr/bin/python3",
+                  {"-c",
+                   "import json, sys; d = json.load(open(sys.argv[1])); "
+                   "print(d['status'], d['mode'], d['lattice']['nodes'], d['frames'], d['seed'], "
+                   "d['infill']['frames'], d['infill']['converged_frames'], "
+                   "d['strain']['max'] < 0.01, sorted(d['stage_ms'])[0], d['effects'][0])",
+                   "info.json"},
+                  dir.path());
   ASSERT_EQ(parsed.exit_code, 0) << parsed.err << json.out;
   EXPECT_EQ(parsed.out, "complete hybrid 425 4 1 4 4 True checks stretch\n") << json.out;
 }
@@ -220,9 +220,10 @@ TEST(Info, JsonCarriesTheSameFacts) {
 // mass-spring reference.
 TEST(Run, AModeFromTheCommandLineIgnoresTablesItDoesNotUse) {
   TempDir dir;
-  dir.write("w.toml",
-            "[scene]\nmode = \"hybrid\"\nduration = 0.1\n[flag]\nfine = [17, 25]\ncoarse = [9, 13]\n"
-            "[wrinkles]\nfiber_radius = 0.001\n[infill]\nsolver = \"smooth\"\n");
+  dir.write(
+      "w.toml",
+      "[scene]\nmode = \"hybrid\"\nduration = 0.1\n[flag]\nfine = [17, 25]\ncoarse = [9, 13]\n"
+      "[wrinkles]\nfiber_radius = 0.001\n[infill]\nsolver = \"smooth\"\n");
   const ProcessResult run =
       run_flag_sim({"run", "w.toml", "--mode", "mass-spring", "-o", "m.h5", "--quiet"}, dir.path());
   EXPECT_EQ(run.exit_code, 0) << run.err;

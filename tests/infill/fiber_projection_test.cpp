@@ -108,7 +108,7 @@ TEST(FiberProjection, TheResidualCountsOnlyLinksItCanMove) {
   projection.set_uniform_band(0.005);
   for (int j = 0; j + 1 < 5; ++j) projection.col_bands()[std::size_t(j) * 9] = {1.25, 1.3};
   std::vector<Vec3> x = lattice.rest_positions();
-  x[lattice.index(2, 8)].x() += 0.2 * lattice.spacing_x_m;          // one free link, 20% long
+  x[lattice.index(2, 8)].x() += 0.2 * lattice.spacing_x_m;  // one free link, 20% long
   const ProjectionReport capped = projection.project(x, 1e-6, 0, 1);
   EXPECT_FALSE(capped.converged);
   EXPECT_NEAR(capped.worst_excess, 0.2 - 0.005, 1e-9);

@@ -60,5 +60,4 @@ bool same_file(const std::string& a, const std::string& b);
 /// NUL or other control character, not "." or "..", at most 200 bytes.
 void check_file_name_part(const std::string& name, const std::string& what);
 
-
 }  // namespace flagsim

@@ -109,7 +109,8 @@ class SmoothInfill final : public InfillMethod {
   std::vector<std::uint8_t> held_;
   FiberProjection projection_;
   std::vector<double> coarse_row_stretch_, coarse_col_stretch_;
-  std::vector<double> along_;  ///< 3.3: the coarse stretch interpolated along coarse lines, work buffer
+  std::vector<double>
+      along_;  ///< 3.3: the coarse stretch interpolated along coarse lines, work buffer
 
   int stage_[4] = {-1, -1, -1, -1};
   std::optional<WrinkleParams> wrinkles_;
