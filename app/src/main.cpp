@@ -114,31 +114,35 @@ int main(int argc, char** argv) {
 
   // `flag-sim help [COMMAND]`, and a misspelt command named as such (CLI11
   // would say only "A subcommand is required").
-  std::vector<std::string_view> commands;
-  for (const CLI::App* sub : cli.get_subcommands([](const CLI::App*) { return true; }))
-    commands.push_back(sub->get_name());
-  if (argc >= 2 && std::string_view(argv[1]) == "help") {
-    if (argc == 2) {
-      fmt::print("{}", cli.help());
-      return int(ExitCode::kSuccess);
-    }
-    for (CLI::App* sub : cli.get_subcommands([](const CLI::App*) { return true; }))
-      if (sub->get_name() == argv[2]) {
+  const std::vector<CLI::App*> subcommands =
+      cli.get_subcommands([](const CLI::App*) { return true; });
+  const bool help = argc >= 2 && std::string_view(argv[1]) == "help";
+  const char* command = help ? (argc >= 3 ? argv[2] : nullptr) : (argc >= 2 ? argv[1] : nullptr);
+  if (help && !command) {
+    fmt::print("{}", cli.help());
+    return int(ExitCode::kSuccess);
+  }
+  if (command && command[0] != '-') {
+    std::vector<std::string_view> names = {"help"};
+    for (const CLI::App* sub : subcommands) {
+      if (sub->get_name() != command) {
+        names.push_back(sub->get_name());
+        continue;
+      }
+      if (help) {
         fmt::print("{}", sub->help());
         return int(ExitCode::kSuccess);
       }
-  }
-  if (argc >= 2 && argv[1][0] != '-' &&
-      std::find(commands.begin(), commands.end(), std::string_view(argv[1])) == commands.end()) {
-    const std::string typed = argc >= 2 && std::string_view(argv[1]) == "help" && argc >= 3
-                                  ? std::string(argv[2])
-                                  : std::string(argv[1]);
-    commands.push_back("help");
-    const std::string guess = flagsim::detail::closest_name(typed, commands);
-    return fail(
-        ExitCode::kBadInput,
-        fmt::format("unknown command '{}'{} (see flag-sim --help)", flagsim::printable(typed),
-                    guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
+      names.clear();  // a command: CLI11 parses the rest
+      break;
+    }
+    if (!names.empty()) {
+      const std::string guess = flagsim::detail::closest_name(command, names);
+      return fail(
+          ExitCode::kBadInput,
+          fmt::format("unknown command '{}'{} (see flag-sim --help)", flagsim::printable(command),
+                      guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
+    }
   }
 
   try {
