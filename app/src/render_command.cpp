@@ -95,12 +95,12 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   plan.output = request.output;
   if (plan.output.empty()) throw UserError("render: -o OUT.mp4 or -o DIR is required");
   plan.container = render::container_of(plan.output);
-  plan.video = plan.container.has_value();
+  const bool video = plan.container.has_value();
   // Anything else is a directory of PNG frames; a name with some other
   // extension (run.avi) is almost surely meant as a video: refused rather than
   // made into a directory of that name. An existing directory, or a trailing
   // '/', says "directory" whatever the name.
-  if (!plan.video && !ends_with(plan.output, "/") && !fs::is_directory(plan.output)) {
+  if (!video && !ends_with(plan.output, "/") && !fs::is_directory(plan.output)) {
     const std::string extension = fs::path(plan.output).extension().string();
     if (!extension.empty() && extension != ".")
       throw UserError(fmt::format(
@@ -108,7 +108,7 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
           "give a directory (a trailing '/' makes any name one)",
           request.output_flag, plan.output, extension));
   }
-  if (plan.video && !(fps > 0.0 && fps <= limits::kFps))
+  if (video && !(fps > 0.0 && fps <= limits::kFps))
     throw UserError(
         fmt::format("{} {}: the run's frames per second ({}) is not in (0, {}]: "
                     "cannot time a video; render PNG frames to a directory instead",
@@ -137,7 +137,7 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
     plan.view = *view;
   }
   if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_range(*request.frames);
-  if (plan.video && render::needs_even_size(*plan.container) && (plan.width % 2 || plan.height % 2))
+  if (video && render::needs_even_size(*plan.container) && (plan.width % 2 || plan.height % 2))
     throw UserError(fmt::format("--size {}x{}: {} (yuv420p) needs an even width and height",
                                 plan.width, plan.height, render::to_string(*plan.container)));
   std::string texture = request.texture.value_or(scene_render ? scene_render->texture : "");
@@ -146,7 +146,7 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
       throw UserError(fmt::format("--texture {}: a texture needs --style textured", texture));
     plan.texture = render::read_png(texture);
   }
-  if (plan.video) {
+  if (video) {
     if (render::find_ffmpeg().empty())
       throw UserError(
           fmt::format("{} {}: a video needs ffmpeg, which is not on PATH (apt-get "
@@ -186,7 +186,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   const auto context = render::make_osmesa_context(plan.width, plan.height);
   render::FrameRenderer renderer(*context, options);
   std::optional<render::VideoWriter> video;
-  if (plan.video) video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
+  if (plan.container) video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
   double draw_s = 0.0, encode_s = 0.0;
   for (int t = first; t < last; ++t) {
     if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
@@ -216,7 +216,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   return fmt::format(
       "rendered {} frames ({}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
       last - first, render::to_string(plan.style), plan.width, plan.height, 1e3 * draw_s / n,
-      1e3 * encode_s / n, plan.video ? render::to_string(*plan.container) : "PNG", plan.output);
+      1e3 * encode_s / n, plan.container ? render::to_string(*plan.container) : "PNG", plan.output);
 }
 
 int render_command(const std::string& h5_path, const RenderRequest& request) {

@@ -30,7 +30,6 @@ struct RenderRequest {
 /// Everything a render needs, checked before anything is written or run.
 struct RenderPlan {
   std::string output;
-  bool video = false;
   int width = 1280, height = 720;
   render::Style style = render::Style::kShaded;
   render::Image texture;  ///< empty: the built-in pattern
