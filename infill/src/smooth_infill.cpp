@@ -19,6 +19,12 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
       coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)),
       wrinkles_(wrinkles) {
   surface_.resize(fine.node_count());
+  // 3.3's weights along the rows: row links between coarse row-link midpoints,
+  // column links between coarse columns.
+  for (int k = 0; k + 1 < fine.cols; ++k)
+    row_link_lerp_.push_back(lerp_at((k + 0.5) / grid.col_stride - 0.5, grid.coarse_cols - 1));
+  for (int k = 0; k < fine.cols; ++k)
+    col_node_lerp_.push_back(lerp_at(double(k) / grid.col_stride, grid.coarse_cols));
   if (wrinkles_) {
     normals_.resize(fine.node_count());
     last_offset_.assign(fine.node_count(), 0.0);
@@ -158,6 +164,13 @@ void SmoothInfill::add_wrinkles(std::span<Vec3> positions_m) {
       positions_m[i] += (offset[i] - (positions_m[i] - surface_[i]).dot(normals_[i])) * normals_[i];
 }
 
+SmoothInfill::Lerp SmoothInfill::lerp_at(double x, int count) {
+  // x in samples 0 .. count - 1 (clamped): the two samples around it and the weight of the second.
+  const double clamped = std::clamp(x, 0.0, double(count - 1));
+  const int a = std::min(int(clamped), std::max(count - 2, 0));
+  return {a, std::min(a + 1, count - 1), count > 1 ? clamped - a : 0.0};
+}
+
 void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   const int jc_count = grid_.coarse_rows, kc_count = grid_.coarse_cols;
   const int rs = grid_.row_stride, cs = grid_.col_stride;
@@ -182,11 +195,8 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   // (measured: turning angles on coarse rows up to 1.6x those between).
   // Separable: first along each coarse line (to every dense link position
   // on it), then across, between the two coarse lines on either side.
-  const auto position = [](double x, int count) {  // cell coordinate -> (index, weight)
-    const double clamped = std::clamp(x, 0.0, double(count - 1));
-    const int i = std::min(int(clamped), std::max(count - 2, 0));
-    return std::pair<int, double>(i, count > 1 ? clamped - i : 0.0);
-  };
+  // (The weights along the rows depend on the lattice only: kept from the
+  // constructor, row_link_lerp_ and col_node_lerp_.)
   const auto upper = [](double stretch) {
     return 1.0 + std::min(kStretchCap, std::max(kBand, stretch));
   };
@@ -196,15 +206,13 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   along_.resize(std::size_t(std::max(jc_count * (K - 1), (J - 1) * kc_count)));
   for (int jc = 0; jc < jc_count; ++jc)
     for (int k = 0; k + 1 < K; ++k) {
-      const auto [ka, tk] = position((k + 0.5) / cs - 0.5, kc_count - 1);
-      const int kb = std::min(ka + 1, kc_count - 2);
+      const Lerp& w = row_link_lerp_[std::size_t(k)];
       const double* line = &coarse_row_stretch_[std::size_t(jc) * std::size_t(kc_count - 1)];
       along_[std::size_t(jc) * std::size_t(K - 1) + std::size_t(k)] =
-          (1.0 - tk) * line[ka] + tk * line[kb];
+          (1.0 - w.t) * line[w.a] + w.t * line[w.b];
     }
   for (int j = 0; j < J; ++j) {
-    const auto [ja, tj] = position(double(j) / rs, jc_count);
-    const int jb = std::min(ja + 1, jc_count - 1);
+    const auto [ja, jb, tj] = lerp_at(double(j) / rs, jc_count);
     const double* a = &along_[std::size_t(ja) * std::size_t(K - 1)];
     const double* b = &along_[std::size_t(jb) * std::size_t(K - 1)];
     LinkBand* out = &rows[std::size_t(j) * std::size_t(K - 1)];
@@ -212,8 +220,7 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   }
   // Column links: coarse column links lie on coarse columns kc, midpoints at jc + 1/2.
   for (int j = 0; j + 1 < J; ++j) {
-    const auto [ja, tj] = position((j + 0.5) / rs - 0.5, jc_count - 1);
-    const int jb = std::min(ja + 1, jc_count - 2);
+    const auto [ja, jb, tj] = lerp_at((j + 0.5) / rs - 0.5, jc_count - 1);
     const double* a = &coarse_col_stretch_[std::size_t(ja) * std::size_t(kc_count)];
     const double* b = &coarse_col_stretch_[std::size_t(jb) * std::size_t(kc_count)];
     for (int kc = 0; kc < kc_count; ++kc)
@@ -224,9 +231,8 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
     const double* line = &along_[std::size_t(j) * std::size_t(kc_count)];
     LinkBand* out = &cols[std::size_t(j) * std::size_t(K)];
     for (int k = 0; k < K; ++k) {
-      const auto [ka, tk] = position(double(k) / cs, kc_count);
-      const int kb = std::min(ka + 1, kc_count - 1);
-      out[k] = {1.0 - kBand, upper((1.0 - tk) * line[ka] + tk * line[kb])};
+      const Lerp& w = col_node_lerp_[std::size_t(k)];
+      out[k] = {1.0 - kBand, upper((1.0 - w.t) * line[w.a] + w.t * line[w.b])};
     }
   }
 }
