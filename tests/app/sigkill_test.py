@@ -28,6 +28,14 @@ def start(out, flush_every):
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
+def interrupt(proc):
+    """SIGINT to a running flag-sim; its stderr and the seconds it took to exit."""
+    sent = time.time()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    return err, time.time() - sent
+
+
 def wait_for_growth(path, size, timeout=60):
     deadline = time.time() + timeout
     while time.time() < deadline:
@@ -78,10 +86,7 @@ with tempfile.TemporaryDirectory() as tmp:
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     check(wait_for_growth(out + ".partial", 500_000), "long frames: frame 0 never written")
     time.sleep(1.0)  # inside frame 1
-    sent = time.time()
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    took = time.time() - sent
+    err, took = interrupt(proc)
     check(proc.returncode == 130, f"long frame: exit {proc.returncode} {err}")
     check(took < 2.0, f"long frame: the signal took {took:.2f} s to stop the run")
     with h5py.File(out, "r") as f:
@@ -102,10 +107,7 @@ with tempfile.TemporaryDirectory() as tmp:
     deadline = time.time() + 60
     while time.time() < deadline and (not os.path.isdir(frames_dir) or len(os.listdir(frames_dir)) < 3):
         time.sleep(0.05)
-    sent = time.time()
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    took = time.time() - sent
+    err, took = interrupt(proc)
     check(proc.returncode == 130, f"render: exit {proc.returncode} {err}")
     check(took < 2.0, f"render: the signal took {took:.2f} s")
     check(len(os.listdir(frames_dir)) < 600, "render: every frame was drawn anyway")
