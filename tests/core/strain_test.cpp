@@ -32,5 +32,25 @@ TEST(Strain, NanIsNeverHidden) {
   EXPECT_TRUE(std::isnan(link_strain(lattice, x).max));
 }
 
+TEST(Strain, EachNodeGetsItsLargestLink) {
+  // 3 x 3 nodes 1 m apart; node (1, 1) moved 0.1 m along +x: its left row
+  // link is 10% long, its right one 10% short, the column links above and
+  // below it sqrt(1.01) - 1 long; every other link at rest.
+  const Lattice lattice = Lattice::rectangle(3, 3, 2.0, 2.0, Vec3::Zero());
+  std::vector<Vec3> x = lattice.rest_positions();
+  x[lattice.index(1, 1)].x() += 0.1;
+  std::vector<float> node(lattice.node_count(), -1.0f);
+  const StrainStats s = link_strain(lattice, x, node);
+  EXPECT_NEAR(s.max, 0.1, 1e-12);
+  const float diagonal = float(std::sqrt(1.01) - 1.0);
+  const float expected[3][3] = {{0.0f, diagonal, 0.0f}, {0.1f, 0.1f, 0.1f}, {0.0f, diagonal, 0.0f}};
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(node[lattice.index(j, k)], expected[j][k], 1e-6f) << j << "," << k;
+  // The same statistics with or without the field.
+  EXPECT_EQ(link_strain(lattice, x).max, s.max);
+  EXPECT_EQ(link_strain(lattice, x).mean, s.mean);
+}
+
 }  // namespace
 }  // namespace flagsim

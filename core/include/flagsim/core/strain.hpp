@@ -14,6 +14,10 @@ struct StrainStats {
 /// Strain of every row link ((j,k)-(j,k+1), rest S = spacing_x) and column link
 /// ((j,k)-(j+1,k), rest S = spacing_y). positions_m: [J*K] row-major, m.
 /// A non-finite position gives a non-finite max (NaN propagates), never a silent 0.
-StrainStats link_strain(const Lattice& lattice, std::span<const Vec3> positions_m);
+/// @param node_strain  [J*K] or empty: when given, each node's largest strain of
+///   its (up to four) row and column links (contract: /frames/strain), float32 as
+///   stored; not meaningful in a frame whose statistics are NaN
+StrainStats link_strain(const Lattice& lattice, std::span<const Vec3> positions_m,
+                        std::span<float> node_strain = {});
 
 }  // namespace flagsim
