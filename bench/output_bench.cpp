@@ -23,18 +23,20 @@ void BM_WriteFrame(benchmark::State& bench) {
   info.stages = {"stretch", "output"};
   info.output_stage = 1;
   std::vector<Vec3> x = lattice.rest_positions();
+  const std::vector<Vec3> v(x.size(), Vec3(0.1, 0.2, 0.3));
+  const std::vector<float> strain(x.size(), 1e-3f);
   {
     flagsim::data::FrameWriter writer(path, lattice, info, 10);
     const std::vector<double> stage_seconds = {0.001, 0.0};
     int frame = 0;
     for (auto _ : bench) {
       x[0].z() = 1e-3 * frame;  // not the same bytes every frame
-      writer.write_frame(frame / 30.0, x, {0.01, 0.001, stage_seconds, 0.01, 1.0, {}});
+      writer.write_frame(frame / 30.0, {x, v, strain}, {0.01, 0.001, stage_seconds, 0.01, 1.0, {}});
       ++frame;
     }
     writer.finish("complete");
   }
-  bench.SetBytesProcessed(std::int64_t(bench.iterations()) * std::int64_t(x.size() * 12));
+  bench.SetBytesProcessed(std::int64_t(bench.iterations()) * std::int64_t(x.size() * 28));
   std::filesystem::remove(path);
   std::filesystem::remove(std::filesystem::path(path).replace_extension(".xdmf"));
 }

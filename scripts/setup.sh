@@ -3,8 +3,19 @@
 # then configures and builds the project into build/. Idempotent: a second run
 # only rebuilds what changed.
 #
-# Usage: scripts/setup.sh [--no-build]
+# Usage: scripts/setup.sh [--test-deps] [--no-build]
+#   --test-deps  also the outside programs the tests run for real (ParaView's
+#                pvpython); scripts/test.sh passes it
 set -euo pipefail
+test_deps=0
+build=1
+for arg in "$@"; do
+  case "$arg" in
+    --test-deps) test_deps=1 ;;
+    --no-build) build=0 ;;
+    *) echo "setup.sh: unknown option $arg (use --test-deps, --no-build)" >&2; exit 2 ;;
+  esac
+done
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
@@ -16,6 +27,10 @@ packages=(
   libbullet-dev libosmesa6-dev libpng-dev ffmpeg
   python3-h5py python3-numpy python3-matplotlib
 )
+if ((test_deps)); then
+  # tests/app/paraview_test.py: ParaView's default XDMF reader, run by pvpython
+  packages+=(paraview python3-paraview)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -33,7 +48,7 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-if [ "${1:-}" = "--no-build" ]; then exit 0; fi
+if ((!build)); then exit 0; fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" \

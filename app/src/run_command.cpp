@@ -104,6 +104,7 @@ int run_command(const RunOptions& options) {
 
   data::RunInfo info;
   info.mode = to_string(scene.mode);
+  info.fields = scene.output.fields;
   info.effects = simulation->effects();
   info.scene_toml = scene.toml_text;
   info.version = std::string(version());
@@ -129,6 +130,7 @@ int run_command(const RunOptions& options) {
   InterruptGuard interrupt;
   Progress progress(!options.quiet && isatty(STDERR_FILENO), scene.simulated_frames());
   const int frames = scene.simulated_frames();
+  std::vector<float> node_strain(scene.output.has_field("strain") ? lattice.node_count() : 0);
   double max_strain_seen = 0.0, total_wall_s = 0.0;
   auto since_write = std::chrono::steady_clock::now();
   std::string status = "complete", reason;
@@ -146,7 +148,7 @@ int run_command(const RunOptions& options) {
     StrainStats strain;
     {
       ScopedStageTimer timer(times, checks_stage);
-      strain = link_strain(lattice, positions);
+      strain = link_strain(lattice, positions, node_strain);  // node_strain empty: not asked for
       if (auto why = hybrid::frame_divergence(*simulation, scene, strain)) {
         status = "diverged";
         reason = fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
@@ -176,7 +178,10 @@ int run_command(const RunOptions& options) {
                              simulation->kinetic_energy_j(),
                              series};
       // Frame times are n / fps exactly, not the sum of the substeps.
-      writer.write_frame(frame / scene.fps, positions, stats, simulation->coarse_positions());
+      writer.write_frame(frame / scene.fps,
+                         {positions, simulation->velocities(), node_strain,
+                          simulation->coarse_positions()},
+                         stats);
       times.reset();
       since_write = std::chrono::steady_clock::now();
     }

@@ -70,6 +70,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "output.file",
                                          "output.every",
                                          "output.flush_every",
+                                         "output.fields",
                                          "render.style",
                                          "render.size",
                                          "render.texture",
@@ -372,6 +373,7 @@ void read_run_tables(TableReader& root, Scene& scene) {
     scene.output.file = in.string("file", "");
     scene.output.every = int(in.integer("every", 1, 1, kMaxFrames));
     scene.output.flush_every = int(in.integer("flush_every", 10, 1, kMaxFrames));
+    scene.output.fields = in.choice_set("fields", scene.output.fields, {"strain", "velocity"});
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("render")) {

@@ -180,6 +180,36 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
                               guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
 }
 
+std::vector<std::string> TableReader::choice_set(std::string_view key,
+                                                std::vector<std::string> fallback,
+                                                std::vector<std::string_view> choices) {
+  const toml::node* node = lookup(key);
+  if (!node) return fallback;
+  std::string listed;
+  for (std::string_view c : choices)
+    listed += fmt::format("{}\"{}\"", listed.empty() ? "" : ", ", c);
+  const std::string what = "an array of distinct names, each one of " + listed;
+  const toml::array* array = node->as_array();
+  if (!array) expected(key, *node, what);
+  std::vector<std::string> values;
+  for (const toml::node& item : *array) {
+    if (!item.is_string()) expected(key, *node, what);
+    const std::string value = *item.value<std::string>();
+    if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
+      const std::string guess = closest_name(value, choices);
+      throw UserError(fmt::format(
+          "{}: {}: expected {}, got \"{}\"{}", where_key(key_name(key), item.source()),
+          key_name(key), what, value,
+          guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
+    }
+    if (std::find(values.begin(), values.end(), value) != values.end())
+      throw UserError(fmt::format("{}: {}: \"{}\" is listed twice",
+                                  where_key(key_name(key), item.source()), key_name(key), value));
+    values.push_back(value);
+  }
+  return values;
+}
+
 Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback, std::string_view unit,
                        double max_abs) {
   const toml::node* node = lookup(key);

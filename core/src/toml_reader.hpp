@@ -69,6 +69,9 @@ class TableReader {
   /// One of `choices`; the message lists them and suggests the closest.
   std::string choice(std::string_view key, std::string fallback,
                      std::vector<std::string_view> choices);
+  /// An array of distinct strings, each one of `choices` (in the order given).
+  std::vector<std::string> choice_set(std::string_view key, std::vector<std::string> fallback,
+                                      std::vector<std::string_view> choices);
   /// [x, y, z] of finite numbers, each of magnitude at most `max_abs`.
   Vec3 vec3(std::string_view key, const Vec3& fallback, std::string_view unit,
             double max_abs = std::numeric_limits<double>::infinity());

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
@@ -24,9 +25,10 @@ namespace fs = std::filesystem;
 namespace {
 
 // Growable dataset of `element_type` with shape [T, tail...], chunked one
-// frame (or, for small rows, 256 frames) at a time.
+// frame (or, for small rows, 256 frames) at a time, with its `units` attribute
+// (an invalid handle when either cannot be made).
 h5::Handle make_series(hid_t parent, const char* name, hid_t element_type,
-                       std::vector<hsize_t> tail) {
+                       std::vector<hsize_t> tail, const char* units) {
   std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{1};
   hsize_t row = 1;
   for (hsize_t d : tail) {
@@ -41,8 +43,10 @@ h5::Handle make_series(hid_t parent, const char* name, hid_t element_type,
   h5::Handle props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_chunk(props.get(), int(chunk.size()), chunk.data());
   H5Pset_obj_track_times(props.get(), false);  // no timestamps: same input, same bytes
-  return h5::dataset(
+  h5::Handle set = h5::dataset(
       H5Dcreate2(parent, name, element_type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT));
+  if (set.valid() && !h5::write_string_attribute(set.get(), "units", units)) return {};
+  return set;
 }
 
 h5::Handle make_group(hid_t parent, const char* name) {
@@ -80,18 +84,20 @@ bool write_index_list(hid_t group, const char* name, const std::vector<int>& val
   H5Pset_obj_track_times(props.get(), false);
   h5::Handle set = h5::dataset(
       H5Dcreate2(group, name, H5T_STD_I32LE, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT));
-  return set.valid() &&
+  return set.valid() && h5::write_string_attribute(set.get(), "units", "1") &&
          H5Dwrite(set.get(), H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
 }
 
 struct FrameWriter::Impl {
   CreatedDirectories directories;  // the output's missing parents: gone again if left empty
   h5::Handle file;
-  h5::Handle time, positions, max_strain, mean_strain, stage_seconds, wall_seconds, kinetic;
+  h5::Handle time, positions, velocity, strain, max_strain, mean_strain, stage_seconds,
+      wall_seconds, kinetic;
   h5::Handle coarse_positions;
   std::vector<h5::Handle> series;
-  std::vector<float> position_buffer, coarse_buffer;
+  std::vector<float> position_buffer, coarse_buffer;  ///< float32 xyz, as stored
   std::vector<double> times;
+  std::vector<std::string> fields;  ///< RunInfo::fields
   std::size_t stage_count = 0;
   int output_stage = -1;
 };
@@ -144,21 +150,30 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   h5::Handle frames = make_group(root, "frames");
   h5::Handle stats = make_group(root, "stats");
   h5::Handle lattice_group = make_group(root, "lattice");
-  impl_->time = make_series(frames.get(), "time", H5T_IEEE_F64LE, {});
-  impl_->positions = make_series(frames.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3});
-  impl_->max_strain = make_series(stats.get(), "max_strain", H5T_IEEE_F32LE, {});
-  impl_->mean_strain = make_series(stats.get(), "mean_strain", H5T_IEEE_F32LE, {});
+  impl_->time = make_series(frames.get(), "time", H5T_IEEE_F64LE, {}, "s");
+  impl_->positions = make_series(frames.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m");
+  const auto wants = [&info](const char* field) {
+    return std::find(info.fields.begin(), info.fields.end(), field) != info.fields.end();
+  };
+  impl_->fields = info.fields;
+  if (wants("velocity"))
+    impl_->velocity =
+        make_series(frames.get(), "velocity", H5T_IEEE_F32LE, {rows, cols, 3}, "m/s");
+  if (wants("strain"))
+    impl_->strain = make_series(frames.get(), "strain", H5T_IEEE_F32LE, {rows, cols}, "1");
+  impl_->max_strain = make_series(stats.get(), "max_strain", H5T_IEEE_F32LE, {}, "1");
+  impl_->mean_strain = make_series(stats.get(), "mean_strain", H5T_IEEE_F32LE, {}, "1");
   impl_->stage_count = info.stages.size();
   impl_->output_stage = info.output_stage;
   impl_->stage_seconds =
-      make_series(stats.get(), "stage_seconds", H5T_IEEE_F64LE, {impl_->stage_count});
-  impl_->wall_seconds = make_series(stats.get(), "wall_seconds", H5T_IEEE_F64LE, {});
-  impl_->kinetic = make_series(stats.get(), "kinetic_energy", H5T_IEEE_F64LE, {});
+      make_series(stats.get(), "stage_seconds", H5T_IEEE_F64LE, {impl_->stage_count}, "s");
+  impl_->wall_seconds = make_series(stats.get(), "wall_seconds", H5T_IEEE_F64LE, {}, "s");
+  impl_->kinetic = make_series(stats.get(), "kinetic_energy", H5T_IEEE_F64LE, {}, "J");
   ok = ok && h5::write_string_list_attribute(impl_->stage_seconds.get(), "stages", info.stages);
   for (const RunInfo::Series& series : info.series) {
-    impl_->series.push_back(make_series(stats.get(), series.name.c_str(), H5T_IEEE_F64LE, {}));
-    ok = ok && impl_->series.back().valid() &&
-         h5::write_string_attribute(impl_->series.back().get(), "units", series.units);
+    impl_->series.push_back(make_series(stats.get(), series.name.c_str(), H5T_IEEE_F64LE, {},
+                                        series.units.c_str()));
+    ok = ok && impl_->series.back().valid();
   }
   if (!info.coarse_rows.empty()) ok = ok && write_coarse_layout(root, info);
 
@@ -175,9 +190,13 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   const std::vector<Vec3> rest_positions = lattice.rest_positions();
   for (std::size_t i = 0; i < rest_positions.size(); ++i)
     for (int c = 0; c < 3; ++c) buffer[3 * i + c] = float(rest_positions[i][c]);
-  ok = ok && rest.valid() &&
+  ok = ok && rest.valid() && h5::write_string_attribute(rest.get(), "units", "m") &&
        H5Dwrite(rest.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) >= 0;
-  ok = ok && impl_->positions.valid() && H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
+  ok = ok && impl_->time.valid() && impl_->positions.valid() &&
+       (impl_->velocity.valid() || !wants("velocity")) &&
+       (impl_->strain.valid() || !wants("strain")) && impl_->max_strain.valid() && impl_->mean_strain.valid() &&
+       impl_->stage_seconds.valid() && impl_->wall_seconds.valid() && impl_->kinetic.valid() &&
+       H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
   if (!ok) {
     impl_.reset();
     fs::remove(partial, ec);
@@ -188,7 +207,8 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
 bool FrameWriter::write_coarse_layout(hid_t root, const RunInfo& info) {
   h5::Handle coarse = make_group(root, "coarse");
   const hsize_t rows = info.coarse_rows.size(), cols = info.coarse_cols.size();
-  impl_->coarse_positions = make_series(coarse.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3});
+  impl_->coarse_positions =
+      make_series(coarse.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m");
   impl_->coarse_buffer.assign(rows * cols * 3, 0.0f);
   return impl_->coarse_positions.valid() &&
          write_index_list(coarse.get(), "rows", info.coarse_rows) &&
@@ -197,24 +217,46 @@ bool FrameWriter::write_coarse_layout(hid_t root, const RunInfo& info) {
 
 FrameWriter::~FrameWriter() = default;  // an unfinished run leaves its .partial file
 
-void FrameWriter::write_frame(double time_s, std::span<const Vec3> positions_m,
-                              const FrameStats& stats, std::span<const Vec3> coarse_m) {
+namespace {
+
+// Vectors as float32 xyz, the layout of /frames/positions and /frames/velocity.
+void to_float_xyz(std::span<const Vec3> vectors, std::vector<float>& buffer) {
+  buffer.resize(3 * vectors.size());
+  for (std::size_t i = 0; i < vectors.size(); ++i)
+    for (int c = 0; c < 3; ++c) buffer[3 * i + c] = float(vectors[i][c]);
+}
+
+}  // namespace
+
+void FrameWriter::write_frame(double time_s, const FrameFields& fields, const FrameStats& stats) {
   const auto start = std::chrono::steady_clock::now();
+  const std::size_t nodes = lattice_.node_count();
+  const bool velocity = impl_->velocity.valid(), strain = impl_->strain.valid();
+  if (fields.positions_m.size() != nodes || (velocity && fields.velocities_m_s.size() != nodes) ||
+      (strain && fields.strain.size() != nodes))
+    throw std::invalid_argument(fmt::format(
+        "FrameWriter::write_frame: {} positions, {} velocities, {} strains for {} nodes",
+        fields.positions_m.size(), fields.velocities_m_s.size(), fields.strain.size(), nodes));
+  const hsize_t index = hsize_t(frames_);
+  bool ok = true;
   if (impl_->coarse_positions.valid()) {
-    std::vector<float>& coarse = impl_->coarse_buffer;
-    for (std::size_t i = 0; i < coarse_m.size() && 3 * i + 2 < coarse.size(); ++i)
-      for (int c = 0; c < 3; ++c) coarse[3 * i + c] = float(coarse_m[i][c]);
-    if (!append_row(impl_->coarse_positions.get(), hsize_t(frames_), H5T_NATIVE_FLOAT,
-                    coarse.data()))
-      throw IoError(
-          fmt::format("{}: writing frame {} failed (disk full?)", partial_path(), frames_));
+    if (fields.coarse_m.size() * 3 != impl_->coarse_buffer.size())
+      throw std::invalid_argument(
+          fmt::format("FrameWriter::write_frame: {} coarse nodes for {}", fields.coarse_m.size(),
+                      impl_->coarse_buffer.size() / 3));
+    to_float_xyz(fields.coarse_m, impl_->coarse_buffer);
+    ok = append_row(impl_->coarse_positions.get(), index, H5T_NATIVE_FLOAT,
+                    impl_->coarse_buffer.data());
   }
   std::vector<float>& buffer = impl_->position_buffer;
-  for (std::size_t i = 0; i < positions_m.size(); ++i)
-    for (int c = 0; c < 3; ++c) buffer[3 * i + c] = float(positions_m[i][c]);
-  const hsize_t index = hsize_t(frames_);
-  bool ok = append_row(impl_->time.get(), index, H5T_NATIVE_DOUBLE, &time_s) &&
-            append_row(impl_->positions.get(), index, H5T_NATIVE_FLOAT, buffer.data());
+  to_float_xyz(fields.positions_m, buffer);
+  ok = ok && append_row(impl_->time.get(), index, H5T_NATIVE_DOUBLE, &time_s) &&
+       append_row(impl_->positions.get(), index, H5T_NATIVE_FLOAT, buffer.data());
+  if (velocity) {
+    to_float_xyz(fields.velocities_m_s, buffer);
+    ok = ok && append_row(impl_->velocity.get(), index, H5T_NATIVE_FLOAT, buffer.data());
+  }
+  if (strain) ok = ok && append_row(impl_->strain.get(), index, H5T_NATIVE_FLOAT, fields.strain.data());
   std::vector<double> stage_row(stats.stage_seconds.begin(), stats.stage_seconds.end());
   stage_row.resize(impl_->stage_count, 0.0);
   const double write_s =
@@ -246,7 +288,10 @@ void skip_hdf5_exit_cleanup() {
 }
 
 std::optional<std::string> FrameWriter::out_of_room() const {
-  const std::uintmax_t frame_bytes = std::uintmax_t(lattice_.node_count()) * 12 +
+  // positions and velocities (float32 xyz), strain (float32)
+  const std::uintmax_t node_bytes =
+      12 + (impl_->velocity.valid() ? 12 : 0) + (impl_->strain.valid() ? 4 : 0);
+  const std::uintmax_t frame_bytes = std::uintmax_t(lattice_.node_count()) * node_bytes +
                                      impl_->coarse_buffer.size() * 4 + impl_->stage_count * 8 + 64;
   const std::uintmax_t pending = std::uintmax_t(frames_ % flush_every_) + 1;
   const std::uintmax_t need = 2 * pending * frame_bytes + (std::uintmax_t(1) << 20);
@@ -271,8 +316,10 @@ void FrameWriter::finish(const std::string& status, const std::string& reason) {
   const hid_t root = impl_->file.get();
   bool ok = h5::write_string_attribute(root, "status", status);
   if (!reason.empty()) ok = ok && h5::write_string_attribute(root, "status_reason", reason);
-  ok = ok && H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
+  ok = ok && write_xdmf_views(root, lattice_, impl_->times.size(), impl_->fields) &&
+       H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
   const std::vector<double> times = std::move(impl_->times);
+  const std::vector<std::string> fields = std::move(impl_->fields);
   impl_.reset();  // closes every dataset and the file
   if (!ok) throw IoError(fmt::format("{}: finishing the output file failed", partial_path()));
   std::error_code ec;
@@ -283,7 +330,7 @@ void FrameWriter::finish(const std::string& status, const std::string& reason) {
   fs::path sidecar(path_);
   sidecar.replace_extension(".xdmf");
   std::ofstream xdmf(sidecar);
-  xdmf << xdmf_text(fs::path(path_).filename().string(), lattice_, times);
+  xdmf << xdmf_text(fs::path(path_).filename().string(), lattice_, times, fields);
   if (!xdmf) throw IoError(fmt::format("{}: cannot write the XDMF sidecar", sidecar.string()));
 }
 

@@ -128,19 +128,44 @@ std::vector<double> OutputReader::times_s() const {
   return read_all(impl_->file.get(), path_, "/frames/time", hsize_t(frames_));
 }
 
-std::vector<Vec3> OutputReader::positions(int frame) const {
-  h5::Handle set = h5::dataset(H5Dopen2(impl_->file.get(), "/frames/positions", H5P_DEFAULT));
+std::vector<double> OutputReader::frame_field(const char* name, int frame, int components) const {
+  const hid_t file = impl_->file.get();
+  if (frame < 0 || frame >= frames_) throw UserError(fmt::format("{}: no frame {}", path_, frame));
+  if (H5Lexists(file, "/frames", H5P_DEFAULT) <= 0 || H5Lexists(file, name, H5P_DEFAULT) <= 0)
+    return {};
+  h5::Handle set = h5::dataset(H5Dopen2(file, name, H5P_DEFAULT));
   h5::Handle file_space = h5::dataspace(H5Dget_space(set.get()));
+  // [T, J, K] or [T, J, K, components], T at least this frame: the shape of
+  // /frames/positions, checked before anything is read.
+  const int rank = components == 1 ? 3 : 4;
+  hsize_t dims[4] = {0, 0, 0, 0};
+  if (H5Sget_simple_extent_ndims(file_space.get()) != rank ||
+      H5Sget_simple_extent_dims(file_space.get(), dims, nullptr) < 0 ||
+      dims[0] <= hsize_t(frame) || dims[1] != hsize_t(rows_) || dims[2] != hsize_t(cols_) ||
+      (rank == 4 && dims[3] != hsize_t(components)))
+    throw UserError(fmt::format("{}: {} is not [T, {}, {}{}] with T > {}", path_, name, rows_,
+                                cols_, rank == 4 ? fmt::format(", {}", components) : "", frame));
   const hsize_t start[4] = {hsize_t(frame), 0, 0, 0};
-  const hsize_t count[4] = {1, hsize_t(rows_), hsize_t(cols_), 3};
+  const hsize_t count[4] = {1, hsize_t(rows_), hsize_t(cols_), hsize_t(components)};
   H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
-  h5::Handle memory = h5::dataspace(H5Screate_simple(4, count, nullptr));
-  std::vector<double> flat(std::size_t(rows_) * cols_ * 3);
-  if (frame < 0 || frame >= frames_ ||
-      H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT,
+  h5::Handle memory = h5::dataspace(H5Screate_simple(rank, count, nullptr));
+  std::vector<double> flat(std::size_t(rows_) * std::size_t(cols_) * std::size_t(components));
+  if (H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT,
               flat.data()) < 0)
-    throw UserError(fmt::format("{}: cannot read frame {}", path_, frame));
-  return to_vec3(flat);
+    throw UserError(fmt::format("{}: cannot read {} of frame {}", path_, name, frame));
+  return flat;
+}
+
+std::vector<Vec3> OutputReader::positions(int frame) const {
+  return to_vec3(frame_field("/frames/positions", frame, 3));
+}
+
+std::vector<Vec3> OutputReader::velocities(int frame) const {
+  return to_vec3(frame_field("/frames/velocity", frame, 3));
+}
+
+std::vector<double> OutputReader::node_strain(int frame) const {
+  return frame_field("/frames/strain", frame, 1);
 }
 
 std::vector<Vec3> OutputReader::rest_positions() const {

@@ -104,6 +104,26 @@ TEST(SceneParser, RenderTableIsReadAndChecked) {
             std::string::npos);
 }
 
+TEST(SceneParser, OutputFieldsAreNamesFromTheirList) {
+  EXPECT_EQ(parse_scene(kMinimal, "s.toml").output.fields,
+            (std::vector<std::string>{"strain", "velocity"}));
+  const Scene none = parse_scene(std::string(kMinimal) + "[output]\nfields = []\n", "s.toml");
+  EXPECT_TRUE(none.output.fields.empty());
+  EXPECT_FALSE(none.output.has_field("strain"));
+  EXPECT_EQ(parse_scene(kMinimal, "s.toml", std::vector<std::string>{"output.fields=[\"strain\"]"})
+                .output.fields,
+            std::vector<std::string>{"strain"});
+  EXPECT_NE(error_of(std::string(kMinimal) + "[output]\nfields = [\"strian\"]\n")
+                .find("output.fields: expected an array of distinct names, each one of \"strain\", "
+                      "\"velocity\", got \"strian\" (did you mean \"strain\"?)"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "[output]\nfields = [\"strain\", \"strain\"]\n")
+                .find("\"strain\" is listed twice"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "[output]\nfields = \"strain\"\n").find("expected an array"),
+            std::string::npos);
+}
+
 TEST(SceneParser, KeyInTheWrongTableIsPointedToItsHome) {
   EXPECT_NE(error_of(std::string("pin = \"left\"\n") + kMinimal).find("did you mean 'flag.pin'?"),
             std::string::npos);

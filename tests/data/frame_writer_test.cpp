@@ -37,10 +37,17 @@ TEST(FrameWriter, RoundTripThroughTheCApi) {
     EXPECT_TRUE(fs::exists(path + ".partial"));
     EXPECT_FALSE(fs::exists(path));
     std::vector<Vec3> x = lattice.rest_positions();
+    std::vector<Vec3> v(x.size());
+    std::vector<float> strain(x.size());
     const double stages[3] = {0.25, 0.5, 0.0};
     for (int t = 0; t < 3; ++t) {
-      for (Vec3& p : x) p.z() = 0.1 * t;
-      writer.write_frame(t / 30.0, x, FrameStats{0.01 * t, 0.001 * t, stages, 1.0, 2.0, {}});
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        x[i].z() = 0.1 * t;
+        v[i] = Vec3(double(i), -0.5 * t, 3.0);
+        strain[i] = 1e-3f * float(i + t);
+      }
+      writer.write_frame(t / 30.0, {x, v, strain},
+                         FrameStats{0.01 * t, 0.001 * t, stages, 1.0, 2.0, {}});
     }
     writer.finish("complete");
   }
@@ -63,6 +70,10 @@ TEST(FrameWriter, RoundTripThroughTheCApi) {
   const auto frame = reader.positions(2);
   EXPECT_EQ(frame[lattice.index(2, 3)], Vec3(1.5, 1.0, double(0.2f)));
   EXPECT_EQ(reader.rest_positions()[lattice.index(0, 3)], Vec3(1.5, 2.0, 0.0));
+  const std::size_t node = lattice.index(1, 2);
+  EXPECT_EQ(reader.velocities(2)[node], Vec3(double(node), -1.0, 3.0));
+  EXPECT_EQ(reader.node_strain(1)[node], double(1e-3f * float(node + 1)));
+  EXPECT_THROW(reader.velocities(3), UserError);
   EXPECT_EQ(reader.stat("max_strain")[2], double(0.02f));
   EXPECT_EQ(reader.stage_names(), info().stages);
   const auto stages = reader.stage_seconds();
@@ -72,15 +83,59 @@ TEST(FrameWriter, RoundTripThroughTheCApi) {
   EXPECT_GE(reader.stat("wall_seconds")[1], 1.0);
 }
 
-TEST(FrameWriter, XdmfPointsAtEveryFrame) {
+TEST(FrameWriter, FieldsOfTheWrongSizeAreRefused) {
+  test::TempDir dir;
+  const Lattice lattice = Lattice::rectangle(3, 4, 1.5, 1.0, Vec3(0, 2, 0));
+  FrameWriter writer(dir.file("run.h5"), lattice, info(), 2);
+  const std::vector<Vec3> x = lattice.rest_positions(), short_v(3);
+  const std::vector<float> strain(x.size());
+  const double stages[3] = {0.0, 0.0, 0.0};
+  EXPECT_THROW(writer.write_frame(0.0, {x, short_v, strain}, FrameStats{0, 0, stages, 0, 0, {}}),
+               std::invalid_argument);
+  EXPECT_EQ(writer.frames_written(), 0);
+}
+
+TEST(FrameWriter, XdmfPointsAtEveryFramesViews) {
   const Lattice lattice = Lattice::rectangle(3, 4, 1, 1, Vec3::Zero());
   const std::vector<double> times = {0.0, 0.5};
-  const std::string text = xdmf_text("run.h5", lattice, times);
+  const std::vector<std::string> fields = {"strain", "velocity"};
+  const std::string text = xdmf_text("run.h5", lattice, times, fields);
   EXPECT_NE(text.find("CollectionType=\"Temporal\""), std::string::npos);
   EXPECT_NE(text.find("<Time Value=\"0.5\"/>"), std::string::npos);
-  EXPECT_NE(text.find("Dimensions=\"2 3 4 3\""), std::string::npos);
-  EXPECT_NE(text.find("run.h5:/frames/positions"), std::string::npos);
-  EXPECT_NE(text.find(">1 0 0 0 1 1 1 1 1 3 4 3<"), std::string::npos);
+  EXPECT_NE(text.find("Dimensions=\"3 4 3\" NumberType=\"Float\" Precision=\"4\" "
+                      "Format=\"HDF\">run.h5:/xdmf/positions/1<"),
+            std::string::npos);
+  EXPECT_NE(text.find("<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">"),
+            std::string::npos);
+  EXPECT_NE(text.find("Dimensions=\"3 4\" NumberType=\"Float\" Precision=\"4\" "
+                      "Format=\"HDF\">run.h5:/xdmf/strain/0<"),
+            std::string::npos);
+  // ParaView's default reader shows 0 points for a HyperSlab geometry.
+  EXPECT_EQ(text.find("HyperSlab"), std::string::npos);
+  // Only the fields the run wrote.
+  const std::vector<std::string> strain_only = {"strain"};
+  const std::string fewer = xdmf_text("run.h5", lattice, times, strain_only);
+  EXPECT_EQ(fewer.find("velocity"), std::string::npos);
+  EXPECT_NE(fewer.find("/xdmf/strain/1"), std::string::npos);
+}
+
+TEST(FrameWriter, FieldsTheRunDidNotAskForAreNotWritten) {
+  test::TempDir dir;
+  const Lattice lattice = Lattice::rectangle(3, 4, 1.5, 1.0, Vec3(0, 2, 0));
+  const std::string path = dir.file("run.h5");
+  {
+    RunInfo run = info();
+    run.fields = {};
+    FrameWriter writer(path, lattice, run, 2);
+    const std::vector<Vec3> x = lattice.rest_positions();
+    const double stages[3] = {0.0, 0.0, 0.0};
+    writer.write_frame(0.0, {x, {}, {}}, FrameStats{0, 0, stages, 0, 0, {}});
+    writer.finish("complete");
+  }
+  const OutputReader reader(path);
+  EXPECT_EQ(reader.positions(0).size(), lattice.node_count());
+  EXPECT_TRUE(reader.velocities(0).empty());
+  EXPECT_TRUE(reader.node_strain(0).empty());
 }
 
 TEST(FrameWriter, UncreatableOutputIsAUserErrorAndLeavesNothing) {

@@ -40,6 +40,8 @@ with tempfile.TemporaryDirectory() as tmp:
             "coarse/cols": (np.int32, (13,)),
             "frames/time": (np.float64, (T,)),
             "frames/positions": (np.float32, (T, J, K, 3)),
+            "frames/velocity": (np.float32, (T, J, K, 3)),
+            "frames/strain": (np.float32, (T, J, K)),
             "lattice/rest_positions": (np.float32, (J, K, 3)),
             "stats/max_strain": (np.float32, (T,)),
             "stats/mean_strain": (np.float32, (T,)),
@@ -58,6 +60,45 @@ with tempfile.TemporaryDirectory() as tmp:
         check(stages == ["stretch", "gravity", "wind", "integrate", "infill_3.1", "infill_3.3",
                          "infill_3.4", "checks", "output"], f"stages {stages}")
         check(f["stats/coarse_offset"].attrs["units"] == "m", "coarse_offset units")
+        # Every dataset says its unit (contract: attr units on every dataset).
+        units = {"frames/time": "s", "frames/positions": "m", "frames/velocity": "m/s",
+                 "frames/strain": "1", "stats/max_strain": "1", "stats/stage_seconds": "s",
+                 "stats/kinetic_energy": "J", "lattice/rest_positions": "m",
+                 "coarse/positions": "m", "coarse/rows": "1"}
+        for path, unit in units.items():
+            check(f[path].attrs.get("units") == unit, f"{path} units {f[path].attrs.get('units')}")
+        datasets = []
+        f.visititems(lambda name, obj: datasets.append(name)
+                     if isinstance(obj, h5py.Dataset) and not name.startswith("xdmf/") else None)
+        check(all("units" in f[name].attrs for name in datasets),
+              f"without units: {[n for n in datasets if 'units' not in f[n].attrs]}")
+        # Per-node strain: each node's largest link |d - S| / S, from the positions themselves.
+        x = f["frames/positions"][...].astype(np.float64)
+        sx, sy = 1.5 / (K - 1), 1.0 / (J - 1)
+        row = np.abs(np.linalg.norm(np.diff(x, axis=2), axis=-1) - sx) / sx  # [T, J, K-1]
+        col = np.abs(np.linalg.norm(np.diff(x, axis=1), axis=-1) - sy) / sy  # [T, J-1, K]
+        node = np.zeros((T, J, K))
+        for a, b in ((row, (slice(None), slice(None), slice(0, -1))),
+                     (row, (slice(None), slice(None), slice(1, None))),
+                     (col, (slice(None), slice(0, -1), slice(None))),
+                     (col, (slice(None), slice(1, None), slice(None)))):
+            node[b] = np.maximum(node[b], a)
+        # float32 positions: strains agree to about 1e-7 m / 6 cm
+        check(np.allclose(f["frames/strain"][...], node, atol=2e-5),
+              f"node strain off by {np.abs(f['frames/strain'][...] - node).max()}")
+        check(np.isclose(f["frames/strain"][...].max(axis=(1, 2)), f["stats/max_strain"][...],
+                         atol=1e-6).all(), "the largest node strain is /stats/max_strain")
+        # Velocities: hybrid mode's dense nodes move by the frame differences.
+        v = f["frames/velocity"][...]
+        check(np.all(v[0] == 0), "frame 0 at rest")
+        check(np.allclose(v[1:], np.diff(x, axis=0) * 30.0, atol=1e-4),
+              f"velocity is the frame difference x fps: {np.abs(v[1:] - np.diff(x, axis=0) * 30).max()}")
+        # One view of every frame of every field, for the XDMF sidecar, that reads as its frame.
+        for field in ("positions", "velocity", "strain"):
+            check(len(f["xdmf/" + field]) == T, f"xdmf views of {field}")
+            for t in range(T):
+                check(np.array_equal(f[f"xdmf/{field}/{t}"][...], f["frames/" + field][t]),
+                      f"xdmf view of {field} in frame {t}")
         check(np.all(f["stats/infill_converged"][...] == 1), "the infill converged on every frame")
         # The dense counterpart of each coarse node is as far from it as the file says.
         dense = f["frames/positions"][...].astype(np.float64)[:, ::2, ::2]

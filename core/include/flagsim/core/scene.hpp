@@ -4,10 +4,12 @@
 // Every quantity is SI (m, s, kg, N, Pa). An optional effect table (pole,
 // gravity, wind, bending, ...) is present exactly when the scene file has it;
 // a stage is built for it only then (contract: "Scene file").
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "flagsim/core/lattice.hpp"
@@ -108,6 +110,12 @@ struct Output {
   std::string file;      ///< empty: chosen by the app
   int every = 1;         ///< keep every n-th simulated frame
   int flush_every = 10;  ///< frames written between flushes to disk
+  /// Per-node fields written besides the positions: "strain" (/frames/strain)
+  /// and "velocity" (/frames/velocity); both unless the scene lists fewer.
+  std::vector<std::string> fields = {"strain", "velocity"};
+  bool has_field(std::string_view name) const {
+    return std::find(fields.begin(), fields.end(), name) != fields.end();
+  }
 };
 
 struct Render {

@@ -48,6 +48,8 @@ struct RunInfo {
     std::string name, units;
   };
   std::vector<Series> series;
+  /// Per-node fields besides the positions ([output] fields): "strain", "velocity".
+  std::vector<std::string> fields = {"strain", "velocity"};
 };
 
 /// Per-frame statistics.
@@ -60,6 +62,14 @@ struct FrameStats {
   std::span<const double> series;  ///< one per RunInfo::series
 };
 
+/// One frame's per-node fields, each [J*K] row-major.
+struct FrameFields {
+  std::span<const Vec3> positions_m;     ///< /frames/positions, m
+  std::span<const Vec3> velocities_m_s;  ///< /frames/velocity, m/s (when RunInfo::fields has it)
+  std::span<const float> strain;  ///< /frames/strain: each node's largest link strain, 1 (ditto)
+  std::span<const Vec3> coarse_m = {};   ///< [Jc*Kc] /coarse/positions, when RunInfo named them
+};
+
 class FrameWriter {
  public:
   /// Creates `path`.partial. Throws UserError if it cannot be created (a bad
@@ -69,14 +79,14 @@ class FrameWriter {
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
 
-  /// Appends one frame. positions_m: [J*K] row-major. The time spent writing is
-  /// added to the output stage's column of this frame. Throws IoError on failure.
-  /// coarse_m: [Jc*Kc] positions of the coarse nodes, when RunInfo named them.
-  void write_frame(double time_s, std::span<const Vec3> positions_m, const FrameStats& stats,
-                   std::span<const Vec3> coarse_m = {});
+  /// Appends one frame. The time spent writing is added to the output stage's
+  /// column of this frame. Throws IoError on failure, std::invalid_argument
+  /// when a field's size does not match the lattice (or the coarse layout).
+  void write_frame(double time_s, const FrameFields& fields, const FrameStats& stats);
   /// Sets the status ("complete", "diverged", "interrupted"), adds `reason` as
-  /// root attribute `status_reason` when non-empty, flushes, closes, renames
-  /// the file to its final name and writes the XDMF sidecar. Throws IoError.
+  /// root attribute `status_reason` when non-empty, writes the XDMF views,
+  /// flushes, closes, renames the file to its final name and writes the XDMF
+  /// sidecar. Throws IoError.
   void finish(const std::string& status, const std::string& reason = "");
 
   /// Says why the next frame should not be written, or nullopt when it may be:
@@ -100,9 +110,20 @@ class FrameWriter {
   int frames_ = 0;
 };
 
-/// The XDMF text for `frames` frames of `h5_name` (a path relative to the
-/// sidecar) with the given frame times.
+/// The XDMF text for the frames of `h5_name` (a path relative to the sidecar)
+/// with the given frame times: per time step the geometry and a point array
+/// for each of `fields` ("velocity", "strain"), each read from the frame's
+/// view (write_xdmf_views).
 std::string xdmf_text(const std::string& h5_name, const Lattice& lattice,
-                      std::span<const double> times_s);
+                      std::span<const double> times_s, std::span<const std::string> fields);
+
+/// Where one frame's view of /frames/FIELD lies: "/xdmf/FIELD/FRAME".
+std::string xdmf_view_path(const char* field, std::size_t frame);
+
+/// Writes, into the open file `file_id` (an hid_t), the group /xdmf: for the
+/// positions and each of `fields`, and each of `frames` frames, a virtual
+/// dataset [J, K(, 3)] float32 that is that frame of /frames/FIELD. False on failure.
+bool write_xdmf_views(std::int64_t file_id, const Lattice& lattice, std::size_t frames,
+                      std::span<const std::string> fields);
 
 }  // namespace flagsim::data

@@ -32,6 +32,10 @@ class OutputReader {
   std::vector<double> times_s() const;
   /// Positions of frame t, [J*K] m (stored as float32).
   std::vector<Vec3> positions(int frame) const;
+  /// Velocities of frame t, [J*K] m/s; empty in files written before /frames/velocity.
+  std::vector<Vec3> velocities(int frame) const;
+  /// Each node's largest link strain in frame t, [J*K]; empty in files written before /frames/strain.
+  std::vector<double> node_strain(int frame) const;
   std::vector<Vec3> rest_positions() const;
   /// Hybrid runs: positions of the coarse nodes at frame t [Jc*Kc] and their
   /// dense rows / columns; empty when the file has no /coarse group.
@@ -45,6 +49,10 @@ class OutputReader {
   std::vector<std::string> stage_names() const;
 
  private:
+  /// One frame of a per-node field under /frames ([T, J, K] for 1 component,
+  /// [T, J, K, components] otherwise), shape checked first; empty when absent.
+  std::vector<double> frame_field(const char* name, int frame, int components) const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string path_;
