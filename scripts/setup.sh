@@ -5,7 +5,7 @@
 #
 # Usage: scripts/setup.sh [--test-deps] [--no-build]
 #   --test-deps  also the outside programs the tests run for real (ParaView's
-#                pvpython); scripts/test.sh passes it
+#                pvpython, meshio); scripts/test.sh passes it
 set -euo pipefail
 test_deps=0
 build=1
@@ -28,8 +28,9 @@ packages=(
   python3-h5py python3-numpy python3-matplotlib
 )
 if ((test_deps)); then
-  # tests/app/paraview_test.py: ParaView's default XDMF reader, run by pvpython
-  packages+=(paraview python3-paraview)
+  # tests/app/paraview_test.py: ParaView's default XDMF reader, run by pvpython;
+  # tests/app/export_test.py: meshio reads the exported OBJ
+  packages+=(paraview python3-paraview python3-meshio)
 fi
 
 missing=()

@@ -63,6 +63,14 @@ struct SweepOptions {
 /// argv: the command line that started this sweep (children re-run it with --point).
 int sweep_command(const SweepOptions& options, const std::vector<std::string>& argv);
 
+struct ExportOptions {
+  std::string output;                 ///< -o NAME.pc2 | NAME.obj | DIR/
+  std::optional<std::string> frames;  ///< --frames A:B
+};
+/// `export`: the dense lattice of an output file as a PC2 point cache and its
+/// OBJ (NAME.pc2), one OBJ (NAME.obj) or an OBJ per frame (DIR/).
+int export_command(const std::string& h5_path, const ExportOptions& options);
+
 struct RenderRequest;
 int render_command(const std::string& h5_path, const RenderRequest& request);
 

@@ -88,6 +88,18 @@ int main(int argc, char** argv) {
                          "Frames A:B (A to B - 1, as numbered in the file)");
   render_cmd->add_option("--camera", render.camera, "three-quarter (default), front or side");
 
+  std::string export_input;
+  flagsim::app::ExportOptions export_options;
+  CLI::App* export_cmd = cli.add_subcommand(
+      "export", "The dense lattice for Blender and other DCC tools: PC2 point cache + OBJ, or OBJs");
+  export_cmd->add_option("file", export_input, "flag-sim output (.h5)")->required();
+  export_cmd
+      ->add_option("-o,--output", export_options.output,
+                   "NAME.pc2 (and NAME.obj), NAME.obj (one frame) or DIR/ (an OBJ per frame)")
+      ->required();
+  export_cmd->add_option("--frames", export_options.frames,
+                         "Frames A:B (A to B - 1, as numbered in the file)");
+
   flagsim::app::CompareOptions compare;
   CLI::App* compare_cmd = cli.add_subcommand(
       "compare", "Hybrid against a full-lattice reference: accuracy and cost (CSV + table)");
@@ -163,6 +175,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) return flagsim::app::info_command(info_path, info_json);
     if (*scene_cmd) return flagsim::app::scene_command(print_default);
     if (*render_cmd) return flagsim::app::render_command(render_input, render);
+    if (*export_cmd) return flagsim::app::export_command(export_input, export_options);
     if (*compare_cmd) return flagsim::app::compare_command(compare);
     if (*sweep_cmd) return flagsim::app::sweep_command(sweep, arguments);
   } catch (const flagsim::UserError& e) {

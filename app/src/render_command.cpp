@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "commands.hpp"
+#include "frame_range.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/limits.hpp"
@@ -38,22 +39,6 @@ std::pair<int, int> parse_size(const std::string& text) {
     throw UserError(
         fmt::format("--size {}: each side must be {} to {} pixels", text, kMinSide, kMaxSide));
   return {w, h};
-}
-
-// --frames A:B as Python reads a slice: frames A .. B - 1, either side optional
-// (":20", "10:"), 0-based, as numbered in the file.
-std::pair<int, int> parse_range(const std::string& text) {
-  static const std::regex pattern(R"(^\s*(\d{0,9})\s*:\s*(\d{0,9})\s*$)");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern))
-    throw UserError(fmt::format(
-        "--frames {}: expected A:B (frames A to B - 1, e.g. 0:30, 10:, :20)", printable(text)));
-  const int first = match[1].length() ? std::stoi(match[1]) : 0;
-  const int last = match[2].length() ? std::stoi(match[2]) : -1;
-  if (last >= 0 && last <= first)
-    throw UserError(
-        fmt::format("--frames {}: the range is empty (B must be more than A)", printable(text)));
-  return {first, last};
 }
 
 bool ends_with(const std::string& text, const std::string& tail) {
@@ -136,7 +121,7 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
                       printable(*request.camera)));
     plan.view = *view;
   }
-  if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_range(*request.frames);
+  if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_frame_range(*request.frames);
   if (video && render::needs_even_size(*plan.container) && (plan.width % 2 || plan.height % 2))
     throw UserError(fmt::format("--size {}x{}: {} (yuv420p) needs an even width and height",
                                 plan.width, plan.height, render::to_string(*plan.container)));
@@ -176,11 +161,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   options.texture = plan.texture;
   options.camera = render::frame_bounds(bounds, double(plan.width) / plan.height, plan.view);
   // The range, against the file (the camera above still frames the whole run).
-  const int first = plan.first_frame, last = plan.last_frame < 0 ? frames : plan.last_frame;
-  if (first >= frames || last > frames)
-    throw UserError(fmt::format("--frames {}:{}: {} has frames 0 to {}", first,
-                                plan.last_frame < 0 ? std::string() : std::to_string(last), h5_path,
-                                frames - 1));
+  const auto [first, last] =
+      resolve_frame_range({plan.first_frame, plan.last_frame}, frames, h5_path);
   options.ground_y_m = std::min(0.0, bounds.low.y() - 0.05);
 
   const auto context = render::make_osmesa_context(plan.width, plan.height);
