@@ -33,7 +33,10 @@ int run_command(const RunOptions& options);
 int validate_command(const std::string& scene_path, const std::vector<std::string>& sets);
 /// `info`: the run in `path`, as text or (json) as one JSON object.
 int info_command(const std::string& path, bool json);
-int scene_command(bool print_default);
+/// `scene`: the embedded default scene as shipped (--default), or a scene (a
+/// file, or the default one) with its --set overrides applied, as TOML.
+int scene_command(const std::string& scene_path, bool print_default,
+                  const std::vector<std::string>& sets);
 struct CompareOptions {
   std::string scene_path;
   std::string reference = "mass-spring";

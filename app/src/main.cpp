@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <toml++/toml.h>
 #include <algorithm>
 #include <string_view>
 
@@ -10,7 +12,9 @@
 #include "flagsim/core/message.hpp"
 #include "flagsim/core/near_miss.hpp"
 #include "flagsim/core/version.hpp"
+#include "flagsim/coarse_physics/bullet_cloth.hpp"
 #include "flagsim/data/frame_writer.hpp"
+#include "flagsim/render/offscreen_context.hpp"
 #include "render_command.hpp"
 
 namespace {
@@ -37,7 +41,17 @@ int main(int argc, char** argv) {
   flagsim::data::skip_hdf5_exit_cleanup();
   CLI::App cli{"flag-sim: flag and cloth simulation (Agui, Nishii & Nakajima 1990 hybrid)",
                "flag-sim"};
-  cli.set_version_flag("--version", std::string(flagsim::version()));
+  cli.set_version_flag("--version", [] {
+    // The libraries as this binary runs them (HDF5, Bullet, Mesa) or was built
+    // with (header-only ones): what a bug report needs.
+    return fmt::format(
+        "flag-sim {}\nHDF5 {}, Bullet {}, Eigen {}.{}.{}, Mesa (OSMesa) GL {}, toml++ {}.{}.{}, "
+        "fmt {}.{}.{}, CLI11 {}",
+        flagsim::version(), flagsim::data::hdf5_version(), flagsim::physics::bullet_version(),
+        EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION,
+        flagsim::render::osmesa_gl_version(), TOML_LIB_MAJOR, TOML_LIB_MINOR, TOML_LIB_PATCH,
+        FMT_VERSION / 10000, FMT_VERSION / 100 % 100, FMT_VERSION % 100, CLI11_VERSION);
+  });
   cli.require_subcommand(1);
 
   flagsim::app::RunOptions run;
@@ -69,8 +83,13 @@ int main(int argc, char** argv) {
   info_cmd->add_flag("--json", info_json, "Everything info prints, as one JSON object");
 
   bool print_default = false;
-  CLI::App* scene_cmd = cli.add_subcommand("scene", "Print a scene");
-  scene_cmd->add_flag("--default", print_default, "Print the embedded default scene");
+  std::string scene_path;
+  std::vector<std::string> scene_sets;
+  CLI::App* scene_cmd =
+      cli.add_subcommand("scene", "Print a scene as run would take it (after --set), as TOML");
+  scene_cmd->add_option("scene", scene_path, "Scene file (TOML)");
+  scene_cmd->add_flag("--default", print_default, "The embedded default scene");
+  scene_cmd->add_option("--set", scene_sets, "Override a scene key (TOML value)");
 
   std::string render_input;
   flagsim::app::RenderRequest render;
@@ -173,7 +192,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return flagsim::app::run_command(run);
     if (*validate_cmd) return flagsim::app::validate_command(validate_path, validate_sets);
     if (*info_cmd) return flagsim::app::info_command(info_path, info_json);
-    if (*scene_cmd) return flagsim::app::scene_command(print_default);
+    if (*scene_cmd) return flagsim::app::scene_command(scene_path, print_default, scene_sets);
     if (*render_cmd) return flagsim::app::render_command(render_input, render);
     if (*export_cmd) return flagsim::app::export_command(export_input, export_options);
     if (*compare_cmd) return flagsim::app::compare_command(compare);

@@ -113,7 +113,7 @@ int run_command(const RunOptions& options) {
   info.output_stage = output_stage;
   std::tie(info.coarse_rows, info.coarse_cols) = simulation->coarse_indices();
   info.numbers = simulation->numbers();
-  info.numbers.emplace_back("fps", scene.fps);
+  info.numbers.push_back({"fps", scene.fps, "1/s"});
   // The infill's own account of each frame: whether it reached its tolerance, never silently.
   const bool has_infill = simulation->infill_report().has_value();
   if (has_infill)
@@ -195,6 +195,9 @@ int run_command(const RunOptions& options) {
     }
   }
   progress.done();
+  if (status == "complete")  // every file says why it ended, a complete one too
+    reason = fmt::format("all {} frames simulated (t = 0 .. {:.4g} s), {} written", frames,
+                         (frames - 1) / scene.fps, writer.frames_written());
   writer.finish(status, reason);
 
   const double ms_per_frame = 1000.0 * total_wall_s / std::max(1, writer.frames_written());

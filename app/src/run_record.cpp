@@ -54,8 +54,8 @@ RunRecord record_run(const Scene& scene) {
   record.lattice = simulation->lattice();
   record.fps = scene.fps;
   std::tie(record.coarse_rows, record.coarse_cols) = simulation->coarse_indices();
-  for (const auto& [name, value] : simulation->numbers())
-    if (name == "substeps_per_frame") record.substeps_per_frame = int(value);
+  for (const NamedNumber& number : simulation->numbers())
+    if (number.name == "substeps_per_frame") record.substeps_per_frame = int(number.value);
   const int frames = scene.simulated_frames();
   for (int frame = 0; frame < frames; ++frame) {
     times.reset();

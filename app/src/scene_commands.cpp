@@ -21,8 +21,9 @@ int validate_command(const std::string& scene_path, const std::vector<std::strin
   const Scene scene = load_scene(scene_path, sets);
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   std::string stepping;
-  for (const auto& [name, value] : simulation->numbers())
-    stepping += fmt::format(", {} {:.4g}", name, value);
+  for (const NamedNumber& number : simulation->numbers())
+    stepping += fmt::format(", {} {:.4g}{}", number.name, number.value,
+                            number.units == "1" ? "" : " " + number.units);
   fmt::print("ok: {}: scene \"{}\", mode {}, {} x {} nodes, {} frames at {} fps, effects {}{}\n",
              scene_path, scene.name, to_string(scene.mode), scene.flag.fine_rows,
              scene.flag.fine_cols, scene.simulated_frames(), scene.fps,
@@ -32,10 +33,22 @@ int validate_command(const std::string& scene_path, const std::vector<std::strin
   return int(ExitCode::kSuccess);
 }
 
-int scene_command(bool print_default) {
-  if (!print_default)
-    throw UserError("scene: say which scene to print, e.g. flag-sim scene --default");
-  fmt::print("{}", default_scene_toml());
+int scene_command(const std::string& scene_path, bool print_default,
+                  const std::vector<std::string>& sets) {
+  if (print_default && !scene_path.empty())
+    throw UserError(fmt::format("scene {} --default: give a scene file or --default, not both",
+                                scene_path));
+  if (!print_default && scene_path.empty())
+    throw UserError("scene: say which scene to print: flag-sim scene FILE, or scene --default");
+  if (print_default && sets.empty()) {  // the file itself, comments and all
+    fmt::print("{}", default_scene_toml());
+    return int(ExitCode::kSuccess);
+  }
+  // The scene as `run` would take it: the file with every --set applied,
+  // checked, as TOML (the text a run stores in its `scene` attribute).
+  const Scene scene = load_scene(print_default ? std::string() : scene_path, sets);
+  fmt::print("{}", scene.toml_text);
+  for (const std::string& note : scene.notes) fmt::print(stderr, "{}\n", note);
   return int(ExitCode::kSuccess);
 }
 

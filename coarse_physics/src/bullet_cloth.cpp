@@ -6,6 +6,8 @@
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,6 +18,11 @@
 #include "flagsim/core/stop_request.hpp"
 
 namespace flagsim::physics {
+
+std::string bullet_version() {
+  const int version = btGetVersion();  // e.g. 324
+  return fmt::format("{}.{:02d}", version / 100, version % 100);
+}
 namespace {
 
 btVector3 to_bt(const Vec3& v) {

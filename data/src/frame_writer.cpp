@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -142,9 +143,14 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
                                        fmt::format("{}", fmt::join(info.effects, ","))) &&
             h5::write_string_attribute(root, "scene", info.scene_toml) &&
             h5::write_string_attribute(root, "version", info.version) &&
-            h5::write_int_attribute(root, "seed", (long long)info.seed);
-  for (const auto& [name, value] : info.numbers)
-    ok = ok && h5::write_double_attribute(root, name.c_str(), value);
+            h5::write_int_attribute(root, "seed", (long long)info.seed) &&
+            h5::write_string_attribute(root, "seed.units", "1");
+  for (const NamedNumber& number : info.numbers)
+    ok = ok &&
+         (number.integer ? h5::write_int_attribute(root, number.name.c_str(),
+                                                   (long long)std::llround(number.value))
+                         : h5::write_double_attribute(root, number.name.c_str(), number.value)) &&
+         h5::write_string_attribute(root, (number.name + ".units").c_str(), number.units);
 
   const hsize_t rows = hsize_t(lattice.rows), cols = hsize_t(lattice.cols);
   h5::Handle frames = make_group(root, "frames");
@@ -285,6 +291,12 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
 
 void skip_hdf5_exit_cleanup() {
   H5dont_atexit();
+}
+
+std::string hdf5_version() {
+  unsigned major = 0, minor = 0, release = 0;
+  H5get_libversion(&major, &minor, &release);
+  return fmt::format("{}.{}.{}", major, minor, release);
 }
 
 std::optional<std::string> FrameWriter::out_of_room() const {

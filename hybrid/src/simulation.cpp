@@ -17,11 +17,10 @@ namespace flagsim::hybrid {
 namespace {
 
 // Root attributes describing the physics stepping, in every mode that has physics.
-std::vector<std::pair<std::string, double>> stepping_numbers(
-    const physics::ClothIntegrator& physics) {
-  return {{"substep_seconds", physics.substep_s()},
-          {"substeps_per_frame", double(physics.substeps_per_frame())},
-          {"stable_substep_seconds", physics.stable_substep_s()}};
+std::vector<NamedNumber> stepping_numbers(const physics::ClothIntegrator& physics) {
+  return {{"substep_seconds", physics.substep_s(), "s"},
+          {"substeps_per_frame", double(physics.substeps_per_frame()), "1", true},
+          {"stable_substep_seconds", physics.stable_substep_s(), "s"}};
 }
 
 // The integrator that mode `mode` runs on a lattice: "mass-spring" is always
@@ -39,7 +38,7 @@ class FullLatticeSimulation final : public Simulation {
   explicit FullLatticeSimulation(const Scene& scene) : physics_(integrator_for(scene)) {}
   const Lattice& lattice() const override { return physics_->model().lattice; }
   std::vector<std::string> effects() const override { return physics_->effects(); }
-  std::vector<std::pair<std::string, double>> numbers() const override {
+  std::vector<NamedNumber> numbers() const override {
     return stepping_numbers(*physics_);
   }
   void register_stages(StageTimes& times) override { physics_->register_stages(times); }
@@ -139,7 +138,7 @@ class InfillSimulation final : public Simulation {
     dense_.add_effects(effects);
     return effects;
   }
-  std::vector<std::pair<std::string, double>> numbers() const override { return {}; }
+  std::vector<NamedNumber> numbers() const override { return {}; }
   void register_stages(StageTimes& times) override { dense_.register_stages(times); }
   void advance_frame(StageTimes* times) override {
     ++frame_;
@@ -203,7 +202,7 @@ class HybridSimulation final : public Simulation {
     dense_.add_effects(effects);
     return effects;
   }
-  std::vector<std::pair<std::string, double>> numbers() const override {
+  std::vector<NamedNumber> numbers() const override {
     return stepping_numbers(*physics_);
   }
   void register_stages(StageTimes& times) override {

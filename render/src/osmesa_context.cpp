@@ -50,4 +50,15 @@ std::unique_ptr<OffscreenContext> make_osmesa_context(int width, int height) {
   return std::make_unique<OsMesaContext>(width, height);
 }
 
+std::string osmesa_gl_version() {
+  try {
+    OsMesaContext context(16, 16);
+    context.make_current();
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    return version ? std::string(version) : "unavailable";
+  } catch (const UserError&) {
+    return "unavailable";
+  }
+}
+
 }  // namespace flagsim::render

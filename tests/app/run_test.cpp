@@ -177,6 +177,40 @@ TEST(SceneCommand, DefaultSceneRoundTrips) {
   EXPECT_EQ(run_flag_sim({"validate", "d.toml"}, dir.path()).exit_code, 0);
 }
 
+// `scene FILE --set ...` prints what a run would take: the overrides applied,
+// as TOML that runs the same scene again.
+TEST(SceneCommand, PrintsTheSceneWithItsOverrides) {
+  TempDir dir;
+  dir.write("windy.toml", kWindy);
+  const ProcessResult printed =
+      run_flag_sim({"scene", "windy.toml", "--set", "flag.fine=[5,7]", "--set", "seed=9"},
+                   dir.path());
+  ASSERT_EQ(printed.exit_code, 2) << "seed is scene.seed";  // a key in no table is an error
+  const ProcessResult effective = run_flag_sim(
+      {"scene", "windy.toml", "--set", "flag.fine=[5,7]", "--set", "scene.seed=9"}, dir.path());
+  ASSERT_EQ(effective.exit_code, 0) << effective.err;
+  EXPECT_NE(effective.out.find("fine = [ 5, 7 ]"), std::string::npos) << effective.out;
+  EXPECT_NE(effective.out.find("seed = 9"), std::string::npos) << effective.out;
+  dir.write("effective.toml", effective.out);
+  const ProcessResult check = run_flag_sim({"validate", "effective.toml"}, dir.path());
+  EXPECT_NE(check.out.find("5 x 7 nodes"), std::string::npos) << check.out << check.err;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"scene"}, {"scene", "windy.toml", "--default"}}) {
+    const ProcessResult refused = run_flag_sim(args, dir.path());
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_EQ(refused.err.rfind("error: scene", 0), 0u) << refused.err;
+  }
+}
+
+// --version names the libraries a bug report needs, as this binary runs them.
+TEST(Version, NamesTheLibraries) {
+  const ProcessResult version = run_flag_sim({"--version"});
+  ASSERT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out.rfind("flag-sim ", 0), 0u) << version.out;
+  for (const char* library : {"HDF5 1.", "Bullet 3.", "Eigen 3.", "Mesa", "toml++ ", "fmt ", "CLI11 "})
+    EXPECT_NE(version.out.find(library), std::string::npos) << library << "\n" << version.out;
+}
+
 TEST(Info, SummarisesARun) {
   TempDir dir;
   dir.write("windy.toml", kWindy);

@@ -24,7 +24,7 @@ RunInfo info() {
   run.seed = 42;
   run.stages = {"stretch", "gravity", "output"};
   run.output_stage = 2;
-  run.numbers = {{"substep_seconds", 1e-4}};
+  run.numbers = {{"substep_seconds", 1e-4, "s"}, {"substeps_per_frame", 7.0, "1", true}};
   return run;
 }
 
@@ -63,6 +63,9 @@ TEST(FrameWriter, RoundTripThroughTheCApi) {
   EXPECT_EQ(reader.attribute("scene"), "[scene]\nname = \"t\"\n");
   EXPECT_EQ(reader.seed(), 42);
   EXPECT_DOUBLE_EQ(reader.number_attribute("substep_seconds", 0), 1e-4);
+  EXPECT_EQ(reader.attribute("substep_seconds.units"), "s");
+  EXPECT_EQ(reader.number_attribute("substeps_per_frame", 0), 7.0);
+  EXPECT_EQ(reader.attribute("seed.units"), "1");
   EXPECT_EQ(reader.frame_count(), 3);
   EXPECT_EQ(reader.rows(), 3);
   EXPECT_EQ(reader.cols(), 4);

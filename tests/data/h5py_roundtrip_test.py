@@ -33,6 +33,16 @@ with tempfile.TemporaryDirectory() as tmp:
         check("[flag]" in attrs["scene"] and "fine = [ 17, 25 ]" in attrs["scene"], "scene text")
         check(int(attrs["seed"]) == 1, "seed")
         check(isinstance(attrs["version"], str), "version")
+        check(attrs["status_reason"].startswith("all 5 frames simulated"),
+              f"a complete file says why it ended: {attrs.get('status_reason')}")
+        check(isinstance(attrs["substeps_per_frame"], np.integer),
+              f"substeps_per_frame is a count: {type(attrs['substeps_per_frame'])}")
+        for name, unit in (("substep_seconds", "s"), ("substeps_per_frame", "1"),
+                           ("stable_substep_seconds", "s"), ("fps", "1/s"), ("seed", "1")):
+            check(attrs.get(name + ".units") == unit, f"{name}.units = {attrs.get(name + '.units')}")
+        numeric = [n for n, v in attrs.items() if isinstance(v, (np.number, int, float))]
+        check(all(n + ".units" in attrs for n in numeric),
+              f"numeric attributes without units: {[n for n in numeric if n + '.units' not in attrs]}")
         T, J, K = 5, 17, 25
         expect = {
             "coarse/positions": (np.float32, (T, 9, 13, 3)),

@@ -40,6 +40,9 @@
 
 namespace flagsim::physics {
 
+/// The Bullet library this program runs with ("3.24"), for --version.
+std::string bullet_version();
+
 /// kLST of a link that must close the fraction `fraction` of its error per
 /// substep in `iterations` passes: f / n, at most 1.
 double bullet_link_stiffness(double fraction, int iterations);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "flagsim/core/lattice.hpp"
+#include "flagsim/core/named_number.hpp"
 
 namespace flagsim::data {
 
@@ -23,6 +24,9 @@ namespace flagsim::data {
 /// on a file whose flush failed (disk full); every file is closed by its owner
 /// before exit anyway.
 void skip_hdf5_exit_cleanup();
+
+/// The HDF5 library this program runs with ("1.10.8"), for --version.
+std::string hdf5_version();
 
 inline constexpr const char* kFormat = "flag-sim/1";
 
@@ -40,8 +44,9 @@ struct RunInfo {
   /// Dense row / column index of each coarse row / column (hybrid mode); empty:
   /// no /coarse group.
   std::vector<int> coarse_rows, coarse_cols;
-  /// Further numeric root attributes (substep_seconds, ...).
-  std::vector<std::pair<std::string, double>> numbers;
+  /// Further numeric root attributes (substep_seconds, ...), each with a
+  /// string root attribute NAME.units (HDF5 attributes carry no attributes).
+  std::vector<NamedNumber> numbers;
   /// Further per-frame statistics, float64 [T] under /stats/NAME with attribute
   /// `units`: the stage's own (infill_converged, ...), in FrameStats::series order.
   struct Series {

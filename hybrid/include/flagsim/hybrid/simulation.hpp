@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "flagsim/core/lattice.hpp"
+#include "flagsim/core/named_number.hpp"
 #include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
@@ -23,7 +24,7 @@ class Simulation {
   /// Effects in pipeline order (root attribute `effects`).
   virtual std::vector<std::string> effects() const = 0;
   /// Numeric root attributes describing the stepping (substep_seconds, ...).
-  virtual std::vector<std::pair<std::string, double>> numbers() const = 0;
+  virtual std::vector<NamedNumber> numbers() const = 0;
   /// One timing column per stage, in pipeline order.
   virtual void register_stages(StageTimes& times) = 0;
   /// Advances to the next output frame (1/fps later).

@@ -24,4 +24,9 @@ class OffscreenContext {
 /// Throws UserError when OSMesa cannot create one.
 std::unique_ptr<OffscreenContext> make_osmesa_context(int width, int height);
 
+/// The GL implementation an OSMesa context gets ("4.5 (Compatibility Profile)
+/// Mesa 22.3.6": GL_VERSION of a 16 x 16 one), for --version; "unavailable"
+/// when none can be made.
+std::string osmesa_gl_version();
+
 }  // namespace flagsim::render
