@@ -74,6 +74,9 @@ struct ExportOptions {
 /// OBJ (NAME.pc2), one OBJ (NAME.obj) or an OBJ per frame (DIR/).
 int export_command(const std::string& h5_path, const ExportOptions& options);
 
+/// `plot`: strain, kinetic energy and wall time per frame of an output file, as an image.
+int plot_command(const std::string& h5_path, const std::string& output);
+
 struct RenderRequest;
 int render_command(const std::string& h5_path, const RenderRequest& request);
 

@@ -119,6 +119,12 @@ int main(int argc, char** argv) {
   export_cmd->add_option("--frames", export_options.frames,
                          "Frames A:B (A to B - 1, as numbered in the file)");
 
+  std::string plot_input, plot_output;
+  CLI::App* plot_cmd = cli.add_subcommand(
+      "plot", "A run's strain, kinetic energy and ms per frame over time (PNG, SVG or PDF)");
+  plot_cmd->add_option("file", plot_input, "flag-sim output (.h5)")->required();
+  plot_cmd->add_option("-o,--output", plot_output, "STATS.png|.svg|.pdf")->required();
+
   flagsim::app::CompareOptions compare;
   CLI::App* compare_cmd = cli.add_subcommand(
       "compare", "Hybrid against a full-lattice reference: accuracy and cost (CSV + table)");
@@ -194,6 +200,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) return flagsim::app::info_command(info_path, info_json);
     if (*scene_cmd) return flagsim::app::scene_command(scene_path, print_default, scene_sets);
     if (*render_cmd) return flagsim::app::render_command(render_input, render);
+    if (*plot_cmd) return flagsim::app::plot_command(plot_input, plot_output);
     if (*export_cmd) return flagsim::app::export_command(export_input, export_options);
     if (*compare_cmd) return flagsim::app::compare_command(compare);
     if (*sweep_cmd) return flagsim::app::sweep_command(sweep, arguments);

@@ -22,18 +22,15 @@
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "interrupt.hpp"
+#include "python_plot.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
 
 extern char** environ;
 
 namespace flagsim::app {
-std::string_view sweep_plot_script();
-
 namespace fs = std::filesystem;
 namespace {
-
-constexpr const char* kPython = "/usr/bin/python3";
 
 struct SweepPoint {
   std::string label;
@@ -130,23 +127,6 @@ Scene scene_of(const SweepOptions& o, const SweepPoint& point) {
   std::vector<std::string> sets = base_sets(o);
   sets.insert(sets.end(), point.sets.begin(), point.sets.end());
   return load_scene(o.scene_path, sets);
-}
-
-void check_plot_tools() {
-  if (run_quietly({kPython, "-c", "import matplotlib"}) != 0)
-    throw UserError(fmt::format(
-        "--plot needs {} with matplotlib (apt-get install python3-matplotlib)", kPython));
-}
-
-void plot(const std::string& csv, const std::string& png) {
-  // The paths are arguments of the script, never words of a shell command.
-  ChildProcess python({kPython, "-", csv, png}, true, false);
-  if (!python.valid()) throw IoError(fmt::format("{}: cannot start {}", png, kPython));
-  const std::string_view script = sweep_plot_script();
-  std::fwrite(script.data(), 1, script.size(), python.input());
-  const int status = python.wait();
-  if (status != 0)
-    throw IoError(fmt::format("{}: the plot failed ({} exited with {})", png, kPython, status));
 }
 
 void write_rows(const std::string& path, const std::vector<std::string>& lines) {
@@ -265,7 +245,7 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   check_report_path(o.output);
   if (!o.plot.empty()) {
     check_report_path(o.plot);
-    check_plot_tools();
+    check_plot_tools("--plot");
   }
   FileRoles files;
   files.input(o.scene_path, "the scene");
@@ -318,7 +298,7 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     }
   }
   write_rows(o.output, lines);
-  if (!o.plot.empty()) plot(o.output, o.plot);
+  if (!o.plot.empty()) run_plot_script(sweep_plot_script(), {o.output, o.plot}, o.plot);
   if (!o.quiet)
     fmt::print("sweep: {} points -> {}{}\n", lines.size(), o.output,
                o.plot.empty() ? "" : fmt::format(", {}", o.plot));

@@ -3,6 +3,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <cstdint>
 #include <fstream>
 
 #include "flagsim/data/output_reader.hpp"
@@ -209,6 +210,39 @@ TEST(Version, NamesTheLibraries) {
   EXPECT_EQ(version.out.rfind("flag-sim ", 0), 0u) << version.out;
   for (const char* library : {"HDF5 1.", "Bullet 3.", "Eigen 3.", "Mesa", "toml++ ", "fmt ", "CLI11 "})
     EXPECT_NE(version.out.find(library), std::string::npos) << library << "\n" << version.out;
+}
+
+// `plot`: the run's statistics as a PNG of the size stats_plot.py draws
+// (9 x 8 in at 100 dpi), written whole or not at all.
+TEST(Plot, DrawsTheStatisticsOfARun) {
+  TempDir dir;
+  ASSERT_EQ(
+      run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "4", "-o", "p.h5", "--quiet"},
+                   dir.path())
+          .exit_code,
+      0);
+  const ProcessResult plotted = run_flag_sim({"plot", "p.h5", "-o", "stats.png"}, dir.path());
+  ASSERT_EQ(plotted.exit_code, 0) << plotted.err;
+  std::ifstream png(dir.file("stats.png"), std::ios::binary);
+  std::string header(24, '\0');
+  png.read(header.data(), 24);
+  EXPECT_EQ(header.substr(1, 3), "PNG");
+  const auto be32 = [&](int at) {
+    return (unsigned(std::uint8_t(header[at])) << 24) | (unsigned(std::uint8_t(header[at + 1])) << 16) |
+           (unsigned(std::uint8_t(header[at + 2])) << 8) | unsigned(std::uint8_t(header[at + 3]));
+  };
+  EXPECT_EQ(be32(16), 900u);  // IHDR width
+  EXPECT_EQ(be32(20), 800u);  // and height
+  const int entries = dir.entry_count();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"plot", "p.h5", "-o", "stats.jpg"},
+        {"plot", "p.h5", "-o", "p.h5"},
+        {"plot", "missing.h5", "-o", "m.png"}}) {
+    const ProcessResult refused = run_flag_sim(args, dir.path());
+    EXPECT_EQ(refused.exit_code, 2) << args[3];
+    EXPECT_EQ(refused.err.rfind("error: ", 0), 0u) << refused.err;
+    EXPECT_EQ(dir.entry_count(), entries) << args[3];
+  }
 }
 
 TEST(Info, SummarisesARun) {

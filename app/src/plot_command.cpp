@@ -1,0 +1,55 @@
+// `flag-sim plot`: a run's statistics over time as an image (stats_plot.py).
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "commands.hpp"
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
+#include "flagsim/data/output_reader.hpp"
+#include "python_plot.hpp"
+
+namespace flagsim::app {
+namespace fs = std::filesystem;
+
+int plot_command(const std::string& h5_path, const std::string& output) {
+  if (output.empty()) throw UserError("plot: -o STATS.png is required");
+  const fs::path target(output);
+  const std::string extension = target.extension().string();
+  if (extension != ".png" && extension != ".svg" && extension != ".pdf")
+    throw UserError(fmt::format("-o {}: expected an image name ending in .png, .svg or .pdf", output));
+  // Drawn under a temporary name with the same extension (matplotlib picks the
+  // format from it), renamed when whole: a failed plot leaves nothing.
+  const std::string partial =
+      (target.parent_path() / (target.stem().string() + ".partial" + extension)).string();
+  FileRoles files;
+  files.input(h5_path, "the input");
+  files.output(output, "-o");
+  files.output(partial, "-o (while drawn)");
+  files.check();
+  int frames = 0;
+  {
+    const data::OutputReader reader(h5_path);  // a missing or foreign file: exit 2 here
+    frames = reader.frame_count();
+    if (frames == 0) throw UserError(fmt::format("{}: has no frames to plot", h5_path));
+  }
+  check_plot_tools("plot", true);
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  if (!fs::is_directory(dir) || access(dir.c_str(), W_OK) != 0)
+    throw UserError(fmt::format("-o {}: cannot write to {}", output, dir.string()));
+  try {
+    run_plot_script(stats_plot_script(), {h5_path, partial}, output);
+    std::error_code ec;
+    fs::rename(partial, output, ec);
+    if (ec) throw IoError(fmt::format("{}: cannot rename to {}: {}", partial, output, ec.message()));
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(partial, ec);
+    throw;
+  }
+  fmt::print("plotted {} frames of {} -> {}\n", frames, h5_path, output);
+  return int(ExitCode::kSuccess);
+}
+
+}  // namespace flagsim::app
