@@ -22,6 +22,7 @@ struct RunOptions {
   std::optional<std::string> render_size;     ///< --size WxH
   std::optional<std::string> render_style;    ///< --style
   std::optional<std::string> render_texture;  ///< --texture
+  std::optional<std::string> render_color;    ///< --color strain|speed
   bool quiet = false;
 };
 

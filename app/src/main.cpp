@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--size", run.render_size, "Rendered image size WxH (default 1280x720)");
   run_cmd->add_option("--style", run.render_style, "wireframe, shaded (default) or textured");
   run_cmd->add_option("--texture", run.render_texture, "PNG for --style textured");
+  run_cmd->add_option("--color", run.render_color, "Colour the rendered cloth by strain or speed");
   run_cmd->add_flag("-q,--quiet", run.quiet, "No progress line, only the summary");
 
   std::string validate_path;
@@ -106,6 +107,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--frames", render.frames,
                          "Frames A:B (A to B - 1, as numbered in the file)");
   render_cmd->add_option("--camera", render.camera, "three-quarter (default), front or side");
+  render_cmd->add_option("--color", render.color,
+                         "Colour the shaded cloth by strain or speed (one scale for all frames)");
 
   std::string export_input;
   flagsim::app::ExportOptions export_options;

@@ -122,6 +122,18 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
     plan.view = *view;
   }
   if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_frame_range(*request.frames);
+  if (request.color) {
+    if (*request.color == "strain")
+      plan.color = ColorBy::kStrain;
+    else if (*request.color == "speed")
+      plan.color = ColorBy::kSpeed;
+    else
+      throw UserError(fmt::format("--color {}: expected \"strain\" or \"speed\"",
+                                  printable(*request.color)));
+    if (plan.style != render::Style::kShaded)
+      throw UserError(fmt::format("--color {}: colours the shaded style (not {})", *request.color,
+                                  render::to_string(plan.style)));
+  }
   if (video && render::needs_even_size(*plan.container) && (plan.width % 2 || plan.height % 2))
     throw UserError(fmt::format("--size {}x{}: {} (yuv420p) needs an even width and height",
                                 plan.width, plan.height, render::to_string(*plan.container)));
@@ -164,6 +176,31 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   const auto [first, last] =
       resolve_frame_range({plan.first_frame, plan.last_frame}, frames, h5_path);
   options.ground_y_m = std::min(0.0, bounds.low.y() - 0.05);
+  // --color: one scale for every drawn frame, 0 to the largest value among them.
+  const auto field_of = [&](int t) -> std::vector<double> {
+    if (plan.color == ColorBy::kStrain) return reader.node_strain(t);
+    std::vector<double> speed;
+    for (const Vec3& v : reader.velocities(t)) speed.push_back(v.norm());
+    return speed;
+  };
+  const char* field_name = plan.color == ColorBy::kStrain ? "strain" : "velocity";
+  std::string colored;
+  if (plan.color != ColorBy::kNone) {
+    double high = 0.0;
+    for (int t = first; t < last; ++t) {
+      const std::vector<double> field = field_of(t);
+      if (field.empty())
+        throw UserError(fmt::format(
+            "--color {}: {} has no /frames/{} (written when [output] fields lists \"{}\")",
+            plan.color == ColorBy::kStrain ? "strain" : "speed", h5_path, field_name, field_name));
+      for (double value : field)
+        if (std::isfinite(value)) high = std::max(high, value);
+    }
+    options.color = render::ColorScale{0.0, high};
+    colored = plan.color == ColorBy::kStrain
+                  ? fmt::format(", coloured by strain 0 .. {:.3g}%", 100.0 * high)
+                  : fmt::format(", coloured by speed 0 .. {:.3g} m/s", high);
+  }
 
   const auto context = render::make_osmesa_context(plan.width, plan.height);
   render::FrameRenderer renderer(*context, options);
@@ -177,7 +214,9 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
                       "kept",
                       plan.output, t - first, last - first, h5_path));
     const std::vector<Vec3> positions = reader.positions(t);
-    render::FrameView view{rows, cols, positions, std::nullopt};
+    const std::vector<double> field =
+        plan.color == ColorBy::kNone ? std::vector<double>() : field_of(t);
+    render::FrameView view{rows, cols, positions, std::nullopt, field};
     if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
     const Clock::time_point start = Clock::now();
     const render::Image image = renderer.render(view);
@@ -196,8 +235,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   encode_s += std::chrono::duration<double>(Clock::now() - closing).count();
   const double n = std::max(1, last - first);
   return fmt::format(
-      "rendered {} frames ({}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
-      last - first, render::to_string(plan.style), plan.width, plan.height, 1e3 * draw_s / n,
+      "rendered {} frames ({}{}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
+      last - first, render::to_string(plan.style), colored, plan.width, plan.height, 1e3 * draw_s / n,
       1e3 * encode_s / n, plan.container ? render::to_string(*plan.container) : "PNG", plan.output);
 }
 

@@ -25,7 +25,11 @@ struct RenderRequest {
   std::string output_flag = "-o";      ///< how the user gave `output`, for messages
   std::optional<std::string> frames;   ///< --frames A:B (render only)
   std::optional<std::string> camera;   ///< --camera three-quarter|front|side
+  std::optional<std::string> color;    ///< --color strain|speed
 };
+
+/// What the shaded cloth is coloured by (--color).
+enum class ColorBy { kNone, kStrain, kSpeed };
 
 /// Everything a render needs, checked before anything is written or run.
 struct RenderPlan {
@@ -39,6 +43,7 @@ struct RenderPlan {
   render::View view = render::View::kThreeQuarter;
   /// Frames first .. last - 1 are drawn (last -1: to the end), numbered as in the file.
   int first_frame = 0, last_frame = -1;
+  ColorBy color = ColorBy::kNone;
   CreatedDirectories directories;  ///< made for the output; removed again if left empty
 };
 

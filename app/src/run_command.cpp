@@ -78,10 +78,12 @@ int run_command(const RunOptions& options) {
     request.size = options.render_size;
     request.style = options.render_style;
     request.texture = options.render_texture;
+    request.color = options.render_color;
     request.output_flag = "--render";
     render_plan = plan_render(request, &scene, scene.fps / scene.output.every);
-  } else if (options.render_size || options.render_style || options.render_texture) {
-    throw UserError("--size, --style and --texture go with --render OUT.mp4|DIR");
+  } else if (options.render_size || options.render_style || options.render_texture ||
+             options.render_color) {
+    throw UserError("--size, --style, --texture and --color go with --render OUT.mp4|DIR");
   }
 
   // Nothing the run writes may be a file it reads, or another file it writes.

@@ -62,6 +62,22 @@ const char* to_string(Style style) {
   return "?";
 }
 
+std::array<float, 3> ramp_color(double t) {
+  // Five stops of matplotlib's viridis (perceptually uniform, readable in grey
+  // and by most colour-blind viewers), linear between them.
+  static constexpr float kStops[5][3] = {{0.267f, 0.005f, 0.329f},
+                                         {0.231f, 0.322f, 0.546f},
+                                         {0.128f, 0.567f, 0.551f},
+                                         {0.369f, 0.789f, 0.383f},
+                                         {0.993f, 0.906f, 0.144f}};
+  const double x = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 4.0;
+  const int i = std::min(int(x), 3);
+  const float f = float(x - i);
+  return {kStops[i][0] + f * (kStops[i + 1][0] - kStops[i][0]),
+          kStops[i][1] + f * (kStops[i + 1][1] - kStops[i][1]),
+          kStops[i][2] + f * (kStops[i + 1][2] - kStops[i][2])};
+}
+
 FrameRenderer::FrameRenderer(OffscreenContext& context, RenderOptions options)
     : context_(context), options_(std::move(options)) {
   context_.make_current();
@@ -258,6 +274,21 @@ void FrameRenderer::draw_cloth(const FrameView& frame) {
   } else {
     set_material(kCloth);
   }
+  const bool colored = options_.color && frame.field.size() == x.size();
+  if (colored) {
+    // The field's colour as the material's ambient and diffuse, lit as the cloth is.
+    const ColorScale& scale = *options_.color;
+    const double span = scale.high > scale.low ? scale.high - scale.low : 1.0;
+    colors_.resize(3 * x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const std::array<float, 3> c = ramp_color((frame.field[i] - scale.low) / span);
+      for (int k = 0; k < 3; ++k) colors_[3 * i + std::size_t(k)] = c[std::size_t(k)];
+    }
+    glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
+    glEnable(GL_COLOR_MATERIAL);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glColorPointer(3, GL_FLOAT, 0, colors_.data());
+  }
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
   glVertexPointer(3, GL_FLOAT, 0, vertices_.data());
@@ -265,6 +296,10 @@ void FrameRenderer::draw_cloth(const FrameView& frame) {
   glDrawElements(GL_TRIANGLES, GLsizei(triangles_.size()), GL_UNSIGNED_INT, triangles_.data());
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_VERTEX_ARRAY);
+  if (colored) {
+    glDisableClientState(GL_COLOR_ARRAY);
+    glDisable(GL_COLOR_MATERIAL);
+  }
   if (options_.style == Style::kTextured) {
     glDisableClientState(GL_TEXTURE_COORD_ARRAY);
     glDisable(GL_TEXTURE_2D);

@@ -210,7 +210,7 @@ const std::vector<BadInput>& cases() {
       {"size_without_render",
        kBase,
        {"run", "SCENE", "--size", "640x360"},
-       "--size, --style and --texture go with --render OUT.mp4|DIR"},
+       "--size, --style, --texture and --color go with --render OUT.mp4|DIR"},
       {"render_missing_file",
        "",
        {"render", "nothing.h5", "-o", "frames"},

@@ -1,6 +1,7 @@
 // `flag-sim render` and `run --render` end to end.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -8,6 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
 #include "temp_dir.hpp"
 
@@ -138,6 +142,50 @@ TEST(Render, AFrameRangeAndACameraView) {
            {{"--frames", "a:b"}, "expected A:B"},
            {{"--camera", "top"}, "--camera top: expected one of"}}) {
     std::vector<std::string> command = {"render", "r.h5", "-o", "bad", "--size", "160x90"};
+    command.insert(command.end(), args.begin(), args.end());
+    const ProcessResult result = run_flag_sim(command, dir.path());
+    EXPECT_EQ(result.exit_code, 2) << words;
+    EXPECT_NE(result.err.find(words), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(dir.file("bad"))) << words;
+  }
+}
+
+// --color: one scale over the drawn frames, 0 to their largest value, said in
+// the summary; the field must be in the file, and colours only the shaded style.
+TEST(Render, ColouredByAPerNodeField) {
+  TempDir dir;
+  ASSERT_EQ(run_flag_sim(kSmallRun, dir.path()).exit_code, 0);
+  const ProcessResult plain =
+      run_flag_sim({"render", "r.h5", "-o", "plain", "--frames", "1:3", "--size", "160x90"},
+                   dir.path());
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const ProcessResult strain = run_flag_sim(
+      {"render", "r.h5", "-o", "strain", "--frames", "1:3", "--size", "160x90", "--color", "strain"},
+      dir.path());
+  ASSERT_EQ(strain.exit_code, 0) << strain.err;
+  const data::OutputReader reader(dir.file("r.h5"));
+  const std::vector<double> max_strain = reader.stat("max_strain");
+  EXPECT_NE(strain.out.find(fmt::format("coloured by strain 0 .. {:.3g}%",
+                                        100.0 * std::max(max_strain[1], max_strain[2]))),
+            std::string::npos)
+      << strain.out;
+  EXPECT_NE(bytes(dir.file("strain/frame_00001.png")), bytes(dir.file("plain/frame_00001.png")));
+  const ProcessResult speed = run_flag_sim(
+      {"render", "r.h5", "-o", "speed", "--frames", "1:2", "--size", "160x90", "--color", "speed"},
+      dir.path());
+  EXPECT_NE(speed.out.find("coloured by speed 0 .. "), std::string::npos) << speed.out << speed.err;
+  // A file written without the fields, and a style the colours do not apply to.
+  ASSERT_EQ(run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "2", "--quiet", "-o",
+                          "bare.h5", "--set", "output.fields=[]"},
+                         dir.path())
+                .exit_code,
+            0);
+  for (const auto& [args, words] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"bare.h5", "--color", "strain"}, "bare.h5 has no /frames/strain"},
+           {{"bare.h5", "--color", "speed"}, "bare.h5 has no /frames/velocity"},
+           {{"r.h5", "--color", "heat"}, "--color heat: expected \"strain\" or \"speed\""},
+           {{"r.h5", "--color", "strain", "--style", "wireframe"}, "colours the shaded style"}}) {
+    std::vector<std::string> command = {"render", "-o", "bad", "--size", "160x90"};
     command.insert(command.end(), args.begin(), args.end());
     const ProcessResult result = run_flag_sim(command, dir.path());
     EXPECT_EQ(result.exit_code, 2) << words;

@@ -21,7 +21,7 @@ constexpr int kWidth = 320, kHeight = 240;
 struct Flat {
   Lattice lattice = Lattice::rectangle(9, 13, 1.5, 1.0, Vec3(0.0, 2.0, 0.0));
   std::vector<Vec3> x = lattice.rest_positions();
-  FrameView view() const { return {lattice.rows, lattice.cols, x, std::nullopt}; }
+  FrameView view() const { return {lattice.rows, lattice.cols, x, std::nullopt, {}}; }
 };
 
 Camera straight_on(double z = 4.0) {
@@ -104,7 +104,7 @@ TEST(FrameRenderer, AFineLatticeIsDrawnWithFewerLinesNotAsABlob) {
   options.style = Style::kWireframe;
   options.camera = straight_on();
   FrameRenderer renderer(*context, options);
-  const Image image = renderer.render({lattice.rows, lattice.cols, x, std::nullopt});
+  const Image image = renderer.render({lattice.rows, lattice.cols, x, std::nullopt, {}});
   const double lines =
       fraction_inside(image, 0.0, [](const std::uint8_t* p) { return p[0] + p[1] + p[2] < 150; });
   EXPECT_GT(lines, 0.1);
@@ -169,6 +169,20 @@ TEST(FrameRenderer, StylesParseAndPrint) {
   for (Style style : {Style::kWireframe, Style::kShaded, Style::kTextured})
     EXPECT_EQ(parse_style(to_string(style)), style);
   EXPECT_FALSE(parse_style("sketch"));
+}
+
+TEST(RampColor, DarkToBrightAndClamped) {
+  // Luminance (Rec. 709) rises along the ramp: a value reads as brightness too.
+  double last = -1.0;
+  for (int i = 0; i <= 20; ++i) {
+    const std::array<float, 3> c = ramp_color(i / 20.0);
+    const double luminance = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    EXPECT_GT(luminance, last) << i;
+    last = luminance;
+  }
+  EXPECT_EQ(ramp_color(-3.0), ramp_color(0.0));
+  EXPECT_EQ(ramp_color(7.0), ramp_color(1.0));
+  EXPECT_EQ(ramp_color(std::nan("")), ramp_color(0.0));
 }
 
 }  // namespace

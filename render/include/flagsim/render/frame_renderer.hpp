@@ -6,6 +6,7 @@
 //
 // The renderer sees only a FrameView: positions and the lattice's shape, from
 // an output file or a running simulation's snapshot; never the simulator.
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -31,7 +32,18 @@ struct FrameView {
   int cols = 0;
   std::span<const Vec3> positions_m;
   std::optional<Vec3> pole_top_m;
+  /// [J*K] a per-node value to colour by (RenderOptions::color), or empty.
+  std::span<const double> field;
 };
+
+/// Colours a per-node value on the shaded surface: [low, high] mapped through
+/// a viridis-like ramp (dark blue, teal, green, yellow), clamped outside.
+struct ColorScale {
+  double low = 0.0, high = 1.0;
+};
+
+/// The ramp's colour at t in [0, 1] (clamped), RGB in [0, 1].
+std::array<float, 3> ramp_color(double t);
 
 struct RenderOptions {
   Style style = Style::kShaded;
@@ -40,6 +52,8 @@ struct RenderOptions {
   Image texture;
   /// Height of the ground plane, m.
   double ground_y_m = 0.0;
+  /// kShaded only: colour the cloth by FrameView::field on this scale.
+  std::optional<ColorScale> color;
 };
 
 class FrameRenderer {
@@ -58,7 +72,7 @@ class FrameRenderer {
   OffscreenContext& context_;
   RenderOptions options_;
   unsigned texture_id_ = 0;
-  std::vector<float> vertices_, normals_;  ///< [3 J K] this frame's, for GL
+  std::vector<float> vertices_, normals_, colors_;  ///< [3 J K] this frame's, for GL
   std::vector<unsigned> triangles_;        ///< the mesh's indices, kept between frames
   int triangle_rows_ = 0, triangle_cols_ = 0;
 };
