@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "progress.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
 
@@ -61,9 +62,15 @@ int compare_command(const CompareOptions& options) {
   files.check();
 
   const MetricWindow window{options.horizon_s};
-  const RunRecord reference = record_run(reference_scene);
-  const RunRecord hybrid = record_run(hybrid_scene);
-  const RunRecord tracking = record_tracking(hybrid_scene, hybrid);
+  // A progress line per run on a terminal: the full-lattice reference can take minutes.
+  const bool show = Progress::wanted(false);
+  Progress reference_progress(show, reference_scene.simulated_frames(),
+                              fmt::format("reference ({})", options.reference));
+  const RunRecord reference = record_run(reference_scene, &reference_progress);
+  Progress hybrid_progress(show, hybrid_scene.simulated_frames(), "hybrid");
+  const RunRecord hybrid = record_run(hybrid_scene, &hybrid_progress);
+  Progress tracking_progress(show, int(hybrid.frames.size()), "tracking");
+  const RunRecord tracking = record_tracking(hybrid_scene, hybrid, &tracking_progress);
   Scene tracking_scene = hybrid_scene;
   tracking_scene.mode = Mode::kMassSpring;
 

@@ -2,12 +2,19 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <utility>
 
 namespace flagsim::app {
 
-Progress::Progress(bool enabled, int total_frames)
-    : enabled_(enabled), total_frames_(total_frames) {}
+Progress::Progress(bool enabled, int total_frames, std::string label)
+    : enabled_(enabled), total_frames_(total_frames), label_(std::move(label)) {}
+
+bool Progress::wanted(bool quiet) {
+  return !quiet && isatty(STDERR_FILENO);
+}
 
 void Progress::update(int frame, double time_s, double ms_per_frame) {
   if (!enabled_) return;
@@ -22,13 +29,14 @@ void Progress::update(int frame, double time_s, double ms_per_frame) {
   const double window_s = std::chrono::duration<double>(now - then).count();
   if (frame > first_frame && window_s > 0.0) ms_per_frame = 1e3 * window_s / (frame - first_frame);
   const double eta_s = (total_frames_ - 1 - frame) * ms_per_frame / 1000.0;
-  fmt::print(stderr, "\rframe {}/{}  t = {:.2f} s  {:.1f} ms/frame  ETA {:.0f} s   ", frame + 1,
-             total_frames_, time_s, ms_per_frame, eta_s);
+  fmt::print(stderr, "\r{}{}frame {}/{}  t = {:.2f} s  {:.1f} ms/frame  ETA {:.0f} s   ", label_,
+             label_.empty() ? "" : ": ", frame + 1, total_frames_, time_s, ms_per_frame, eta_s);
   std::fflush(stderr);
 }
 
 void Progress::done() {
-  if (enabled_ && drawn_) fmt::print(stderr, "\r{:70}\r", "");
+  if (enabled_ && drawn_) fmt::print(stderr, "\r{:{}}\r", "", 72 + label_.size());
+  drawn_ = false;
 }
 
 }  // namespace flagsim::app

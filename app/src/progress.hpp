@@ -5,6 +5,7 @@
 // paper infill) said "ETA 0 s" from the running mean with 6 s left.
 #include <chrono>
 #include <deque>
+#include <string>
 #include <utility>
 
 namespace flagsim::app {
@@ -12,7 +13,10 @@ namespace flagsim::app {
 class Progress {
  public:
   /// Shown only when `enabled` (stderr is a terminal and --quiet is not given).
-  Progress(bool enabled, int total_frames);
+  /// `label` leads the line ("reference (mass-spring)"); empty: none.
+  Progress(bool enabled, int total_frames, std::string label = "");
+  /// Whether a progress line belongs on stderr: a terminal, and not --quiet.
+  static bool wanted(bool quiet);
   /// After frame `frame` (0-based) at simulated time t; redraws at most 5 times
   /// a second. `ms_per_frame` (the run's mean) is shown until there is a
   /// recent rate to show.
@@ -23,6 +27,7 @@ class Progress {
  private:
   bool enabled_;
   int total_frames_;
+  std::string label_;
   bool drawn_ = false;
   std::chrono::steady_clock::time_point last_draw_{};
   /// (when, frame) of the updates of the last kWindow, oldest first.

@@ -22,6 +22,7 @@
 #include "flagsim/render/png_io.hpp"
 #include "flagsim/render/video_writer.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 
 namespace flagsim::app {
 namespace fs = std::filesystem;
@@ -207,6 +208,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   std::optional<render::VideoWriter> video;
   if (plan.container) video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
   double draw_s = 0.0, encode_s = 0.0;
+  Progress progress(Progress::wanted(plan.quiet), last - first, "render");
+  const std::vector<double> times = reader.times_s();
   for (int t = first; t < last; ++t) {
     if (stop_requested())  // SIGINT / SIGTERM: stop between frames, the run's file is kept
       throw Interrupted(
@@ -229,7 +232,9 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
     }
     draw_s += std::chrono::duration<double>(drawn - start).count();
     encode_s += std::chrono::duration<double>(Clock::now() - drawn).count();
+    progress.update(t - first, times[std::size_t(t)], 1e3 * (draw_s + encode_s) / (t - first + 1));
   }
+  progress.done();
   const Clock::time_point closing = Clock::now();
   if (video) video->finish();
   encode_s += std::chrono::duration<double>(Clock::now() - closing).count();

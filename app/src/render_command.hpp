@@ -44,6 +44,7 @@ struct RenderPlan {
   /// Frames first .. last - 1 are drawn (last -1: to the end), numbered as in the file.
   int first_frame = 0, last_frame = -1;
   ColorBy color = ColorBy::kNone;
+  bool quiet = false;  ///< no progress line (run --quiet)
   CreatedDirectories directories;  ///< made for the output; removed again if left empty
 };
 

@@ -81,6 +81,7 @@ int run_command(const RunOptions& options) {
     request.color = options.render_color;
     request.output_flag = "--render";
     render_plan = plan_render(request, &scene, scene.fps / scene.output.every);
+    render_plan->quiet = options.quiet;
   } else if (options.render_size || options.render_style || options.render_texture ||
              options.render_color) {
     throw UserError("--size, --style, --texture and --color go with --render OUT.mp4|DIR");
@@ -130,7 +131,7 @@ int run_command(const RunOptions& options) {
   data::FrameWriter writer(output_path, lattice, info, scene.output.flush_every);
 
   InterruptGuard interrupt;
-  Progress progress(!options.quiet && isatty(STDERR_FILENO), scene.simulated_frames());
+  Progress progress(Progress::wanted(options.quiet), scene.simulated_frames());
   const int frames = scene.simulated_frames();
   std::vector<float> node_strain(scene.output.has_field("strain") ? lattice.node_count() : 0);
   double max_strain_seen = 0.0, total_wall_s = 0.0;

@@ -9,6 +9,7 @@
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/hybrid/simulation.hpp"
+#include "progress.hpp"
 
 namespace flagsim::app {
 namespace {
@@ -24,6 +25,11 @@ void add_times(RunRecord& record, const StageTimes& times) {
     record.ms_per_frame += ms;
     (is_infill_stage(times.names()[s]) ? record.infill_ms : record.physics_ms) += ms;
   }
+}
+
+// The progress line after frame `frame`, from the times summed so far.
+void report_progress(Progress* progress, const RunRecord& record, int frame) {
+  if (progress) progress->update(frame, frame / record.fps, record.ms_per_frame / std::max(frame, 1));
 }
 
 void average_times(RunRecord& record) {
@@ -46,7 +52,7 @@ bool frame_is_good(RunRecord& record, const Scene& scene, const std::optional<st
 
 }  // namespace
 
-RunRecord record_run(const Scene& scene) {
+RunRecord record_run(const Scene& scene, Progress* progress) {
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   StageTimes times;
   simulation->register_stages(times);
@@ -64,15 +70,17 @@ RunRecord record_run(const Scene& scene) {
     if (!frame_is_good(record, scene, hybrid::frame_divergence(*simulation, scene, strain), frame))
       break;
     if (frame > 0) add_times(record, times);
+    report_progress(progress, record, frame);
     record.frames.emplace_back(simulation->positions().begin(), simulation->positions().end());
     const auto coarse = simulation->coarse_positions();
     if (!coarse.empty()) record.coarse.emplace_back(coarse.begin(), coarse.end());
   }
+  if (progress) progress->done();
   average_times(record);
   return record;
 }
 
-RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid) {
+RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress* progress) {
   Scene full = scene;
   full.mode = Mode::kMassSpring;
   physics::SpringDamperSolver solver(full);
@@ -109,8 +117,10 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid) {
                        frame))
       break;
     if (frame > 0) add_times(record, times);
+    report_progress(progress, record, frame);
     record.frames.push_back(state.x_m);
   }
+  if (progress) progress->done();
   average_times(record);
   return record;
 }

@@ -25,12 +25,16 @@ struct RunRecord {
   std::string status_reason;
 };
 
-/// Runs `scene` as `flag-sim run` would, into memory.
-RunRecord record_run(const Scene& scene);
+class Progress;
+
+/// Runs `scene` as `flag-sim run` would, into memory; `progress` (may be null)
+/// is updated after every frame.
+RunRecord record_run(const Scene& scene, Progress* progress = nullptr);
 
 /// The full-lattice spring-damper cloth of `scene` with the nodes on the
 /// hybrid's coarse lattice driven along its coarse trajectory (linear in time
 /// between frames): what the infill would have to reproduce, without chaos.
-RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid);
+RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid,
+                          Progress* progress = nullptr);
 
 }  // namespace flagsim::app

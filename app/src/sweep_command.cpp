@@ -22,6 +22,7 @@
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 #include "python_plot.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
@@ -145,11 +146,15 @@ std::vector<std::string> run_points(const SweepOptions& o, const std::vector<Swe
                                     const std::vector<int>& points) {
   const MetricWindow window{o.horizon_s};
   const Scene reference_scene = scene_of(o, grid[0]);
-  const RunRecord reference = record_run(reference_scene);
+  Progress reference_progress(Progress::wanted(o.quiet), reference_scene.simulated_frames(),
+                              "reference (point 0)");
+  const RunRecord reference = record_run(reference_scene, &reference_progress);
   std::vector<std::string> lines;
   for (int i : points) {
     const Scene scene = scene_of(o, grid[std::size_t(i)]);
-    const RunRecord run = i == 0 ? reference : record_run(scene);
+    Progress progress(Progress::wanted(o.quiet), scene.simulated_frames(),
+                      fmt::format("point {} ({})", i, grid[std::size_t(i)].label));
+    const RunRecord run = i == 0 ? reference : record_run(scene, &progress);
     ReportRow row = describe(scene, run, reference, nullptr, window);
     row.point = i;
     row.label = grid[std::size_t(i)].label;
