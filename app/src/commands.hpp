@@ -62,6 +62,10 @@ struct SweepOptions {
   int jobs = 1;
   double horizon_s = 0.5;
   std::vector<std::string> merge;  ///< CSVs to join instead of running
+  /// The reference run, shared: read from this file when it is there, else
+  /// run and saved there (sweep --jobs uses one in its points' directory).
+  std::string reference_file;
+  bool list = false;  ///< print the points and exit
   bool quiet = false;
 };
 /// argv: the command line that started this sweep (children re-run it with --point).

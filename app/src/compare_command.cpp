@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "interrupt.hpp"
 #include "progress.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
@@ -62,6 +63,7 @@ int compare_command(const CompareOptions& options) {
   files.check();
 
   const MetricWindow window{options.horizon_s};
+  const InterruptGuard interrupt;  // a signal stops the run in progress: exit 130, no report
   // A progress line per run on a terminal: the full-lattice reference can take minutes.
   const bool show = Progress::wanted(false);
   Progress reference_progress(show, reference_scene.simulated_frames(),

@@ -150,6 +150,9 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--point", sweep.point, "Run only point I (0, 1: references)");
   sweep_cmd->add_option("--merge", sweep.merge, "Join these point CSVs instead of running");
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
+  sweep_cmd->add_option("--reference-file", sweep.reference_file,
+                        "The reference run: read if there, else run and saved there");
+  sweep_cmd->add_flag("--list", sweep.list, "Print the points (index, label, settings) and exit");
   std::vector<std::string> arguments(argv, argv + argc);
 
   // `flag-sim help [COMMAND]`, and a misspelt command named as such (CLI11

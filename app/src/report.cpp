@@ -124,6 +124,47 @@ std::vector<std::string> csv_rows(const std::string& path) {
   return rows;
 }
 
+ReportRow parse_csv_line(const std::string& line) {
+  std::vector<std::string> cells;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    cells.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  const auto number = [&](std::size_t i) { return cells.size() > i && !cells[i].empty() ? std::stod(cells[i]) : 0.0; };
+  const auto optional = [&](std::size_t i) -> std::optional<double> {
+    if (cells.size() <= i || cells[i].empty()) return std::nullopt;
+    return std::stod(cells[i]);
+  };
+  const auto text = [&](std::size_t i) { return cells.size() > i ? cells[i] : std::string(); };
+  ReportRow r;
+  r.point = int(number(0));
+  r.label = text(1);
+  r.mode = text(2);
+  r.backend = text(3);
+  r.fine = text(4);
+  r.coarse = text(5);
+  r.substeps = int(number(6));
+  r.relax_iterations = int(number(7));
+  r.frames = int(number(8));
+  r.ms_per_frame = number(9);
+  r.physics_ms = number(10);
+  r.infill_ms = number(11);
+  r.max_strain = number(12);
+  r.p99_strain = number(13);
+  r.short_horizon_rms_m = optional(14);
+  r.tracking_rms_m = optional(15);
+  r.flap_hz = optional(16);
+  r.flap_rel_error = optional(17);
+  r.mean_shape_rms_m = optional(18);
+  r.wrinkle_wavelength_m = optional(19);
+  r.status = text(20);
+  r.infill_solver = text(21);
+  return r;
+}
+
 std::string text_table(const std::vector<ReportRow>& rows) {
   auto mm = [](const std::optional<double>& v) {
     return v ? fmt::format("{:.1f}", 1e3 * *v) : std::string("-");

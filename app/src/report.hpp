@@ -39,6 +39,10 @@ std::string csv_line(const ReportRow& row);
 /// Rows of a CSV this module wrote (for merging sweep points). Throws UserError naming the file.
 std::vector<std::string> csv_rows(const std::string& path);
 
+/// A row back from a line csv_line wrote (one csv_rows accepted), for the
+/// table a sweep prints; numbers as printed (6 significant digits).
+ReportRow parse_csv_line(const std::string& line);
+
 /// The short human-readable table printed to stdout.
 std::string text_table(const std::vector<ReportRow>& rows);
 

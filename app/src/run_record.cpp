@@ -3,15 +3,23 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
 
 #include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/stop_request.hpp"
 #include "progress.hpp"
 
 namespace flagsim::app {
+namespace fs = std::filesystem;
 namespace {
 
 bool is_infill_stage(const std::string& name) {
@@ -25,6 +33,14 @@ void add_times(RunRecord& record, const StageTimes& times) {
     record.ms_per_frame += ms;
     (is_infill_stage(times.names()[s]) ? record.infill_ms : record.physics_ms) += ms;
   }
+}
+
+// A signal (with an InterruptGuard installed) cuts the frame short: the run
+// is not finished, and a record of it would measure something else.
+void stop_if_requested(const Scene& scene, int frame) {
+  if (stop_requested())
+    throw Interrupted(fmt::format("stopped by a signal in frame {} of {} of scene \"{}\"", frame,
+                                  scene.simulated_frames(), scene.name));
 }
 
 // The progress line after frame `frame`, from the times summed so far.
@@ -66,6 +82,7 @@ RunRecord record_run(const Scene& scene, Progress* progress) {
   for (int frame = 0; frame < frames; ++frame) {
     times.reset();
     if (frame > 0) simulation->advance_frame(&times);
+    stop_if_requested(scene, frame);
     const StrainStats strain = link_strain(record.lattice, simulation->positions());
     if (!frame_is_good(record, scene, hybrid::frame_divergence(*simulation, scene, strain), frame))
       break;
@@ -112,6 +129,7 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress*
   for (int frame = 0; frame < frames; ++frame) {
     times.reset();
     if (frame > 0) solver.advance_frame(state, &times);
+    stop_if_requested(full, frame);
     const StrainStats strain = link_strain(record.lattice, state.x_m);
     if (!frame_is_good(record, full, divergence_reason(state.x_m, state.v_m_s, strain, full.limits),
                        frame))
@@ -122,6 +140,159 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress*
   }
   if (progress) progress->done();
   average_times(record);
+  return record;
+}
+
+namespace {
+
+constexpr char kRecordMagic[16] = "flag-sim-rec-01";  // with its NUL: 16 bytes
+
+// Plain little-endian bytes of the host (x86-64, as the rest of flag-sim's binary I/O).
+class RecordOut {
+ public:
+  explicit RecordOut(const std::string& path) : out_(path, std::ios::binary | std::ios::trunc) {}
+  template <typename T>
+  void put(const T& value) {
+    out_.write(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  void put_string(const std::string& text) {
+    put<std::uint64_t>(text.size());
+    out_.write(text.data(), std::streamsize(text.size()));
+  }
+  void put_frames(const analysis::Frames& frames) {
+    put<std::uint64_t>(frames.size());
+    for (const std::vector<Vec3>& frame : frames) {
+      put<std::uint64_t>(frame.size());
+      out_.write(reinterpret_cast<const char*>(frame.data()),
+                 std::streamsize(frame.size() * sizeof(Vec3)));
+    }
+  }
+  void put_ints(const std::vector<int>& values) {
+    put<std::uint64_t>(values.size());
+    for (int v : values) put<std::int32_t>(v);
+  }
+  bool close() {
+    out_.close();
+    return bool(out_);
+  }
+
+ private:
+  std::ofstream out_;
+};
+
+class RecordIn {
+ public:
+  RecordIn(const std::string& path, std::uintmax_t size)
+      : in_(path, std::ios::binary), path_(path), left_(size) {}
+  bool good() const { return bool(in_); }
+  template <typename T>
+  T get() {
+    T value{};
+    read(&value, sizeof value);
+    return value;
+  }
+  std::string get_string() {
+    std::string text(count(1), '\0');
+    read(text.data(), text.size());
+    return text;
+  }
+  analysis::Frames get_frames() {
+    analysis::Frames frames(count(sizeof(std::uint64_t)));
+    for (std::vector<Vec3>& frame : frames) {
+      frame.resize(count(sizeof(Vec3)));
+      read(frame.data(), frame.size() * sizeof(Vec3));
+    }
+    return frames;
+  }
+  std::vector<int> get_ints() {
+    std::vector<int> values(count(sizeof(std::int32_t)));
+    for (int& v : values) v = get<std::int32_t>();
+    return values;
+  }
+  bool at_end() const { return left_ == 0; }
+
+ private:
+  // A count of items of `item_bytes` each, never more than the file still holds.
+  std::size_t count(std::size_t item_bytes) {
+    const auto n = get<std::uint64_t>();
+    if (n > left_ / item_bytes) fail();
+    return std::size_t(n);
+  }
+  void read(void* into, std::size_t bytes) {
+    if (bytes > left_ || !in_.read(static_cast<char*>(into), std::streamsize(bytes))) fail();
+    left_ -= bytes;
+  }
+  [[noreturn]] void fail() const {
+    throw UserError(fmt::format("{}: not a whole flag-sim run record", path_));
+  }
+  std::ifstream in_;
+  std::string path_;
+  std::uintmax_t left_;
+};
+
+}  // namespace
+
+void save_record(const RunRecord& record, const std::string& path) {
+  const std::string partial = path + ".partial";
+  RecordOut out(partial);
+  out.put(kRecordMagic);
+  const Lattice& l = record.lattice;
+  out.put<std::int32_t>(l.rows);
+  out.put<std::int32_t>(l.cols);
+  out.put(l.spacing_x_m);
+  out.put(l.spacing_y_m);
+  for (int c = 0; c < 3; ++c) out.put(l.origin_m[c]);
+  out.put(record.fps);
+  out.put<std::int32_t>(record.substeps_per_frame);
+  out.put(record.ms_per_frame);
+  out.put(record.physics_ms);
+  out.put(record.infill_ms);
+  out.put_string(record.status);
+  out.put_string(record.status_reason);
+  out.put_ints(record.coarse_rows);
+  out.put_ints(record.coarse_cols);
+  out.put_frames(record.frames);
+  out.put_frames(record.coarse);
+  std::error_code ec;
+  if (!out.close()) {
+    fs::remove(partial, ec);
+    throw IoError(fmt::format("{}: writing the run record failed (disk full?)", partial));
+  }
+  fs::rename(partial, path, ec);
+  if (ec) throw IoError(fmt::format("{}: cannot rename to {}: {}", partial, path, ec.message()));
+}
+
+RunRecord load_record(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  RecordIn in(path, ec ? 0 : size);
+  if (ec || !in.good()) throw UserError(fmt::format("{}: cannot read the run record", path));
+  const auto magic = in.get<std::array<char, 16>>();
+  if (std::string_view(magic.data(), 16) != std::string_view(kRecordMagic, 16))
+    throw UserError(fmt::format("{}: not a flag-sim run record", path));
+  RunRecord record;
+  Lattice& l = record.lattice;
+  l.rows = in.get<std::int32_t>();
+  l.cols = in.get<std::int32_t>();
+  l.spacing_x_m = in.get<double>();
+  l.spacing_y_m = in.get<double>();
+  for (int c = 0; c < 3; ++c) l.origin_m[c] = in.get<double>();
+  record.fps = in.get<double>();
+  record.substeps_per_frame = in.get<std::int32_t>();
+  record.ms_per_frame = in.get<double>();
+  record.physics_ms = in.get<double>();
+  record.infill_ms = in.get<double>();
+  record.status = in.get_string();
+  record.status_reason = in.get_string();
+  record.coarse_rows = in.get_ints();
+  record.coarse_cols = in.get_ints();
+  record.frames = in.get_frames();
+  record.coarse = in.get_frames();
+  const bool shaped = l.rows >= 2 && l.cols >= 2 &&
+                      std::all_of(record.frames.begin(), record.frames.end(),
+                                  [&](const auto& f) { return f.size() == l.node_count(); });
+  if (!in.at_end() || !shaped)
+    throw UserError(fmt::format("{}: not a whole flag-sim run record", path));
   return record;
 }
 

@@ -31,6 +31,16 @@ class Progress;
 /// is updated after every frame.
 RunRecord record_run(const Scene& scene, Progress* progress = nullptr);
 
+/// A record saved for other processes (sweep's shared reference): every field,
+/// float64 positions, so a point that reads it measures exactly what one that
+/// ran it would. Written under PATH.partial and renamed: a reader never sees
+/// half a file, and two writers of the same record leave one whole one.
+/// Throws IoError when it cannot be written.
+void save_record(const RunRecord& record, const std::string& path);
+/// Reads a record save_record wrote; throws UserError naming `path` when it is
+/// not one (or not whole).
+RunRecord load_record(const std::string& path);
+
 /// The full-lattice spring-damper cloth of `scene` with the nodes on the
 /// hybrid's coarse lattice driven along its coarse trajectory (linear in time
 /// between frames): what the infill would have to reproduce, without chaos.

@@ -141,14 +141,26 @@ int point_of_line(const std::string& line) {
   return std::stoi(line.substr(0, line.find(',')));
 }
 
-// Runs `points` (indices) in this process, against a reference run here.
+// The reference (point 0) run: read from `file` when it is there, else run
+// and, with a file named, saved to it for the other points.
+RunRecord reference_run(const SweepOptions& o, const std::vector<SweepPoint>& grid,
+                        const std::string& file) {
+  std::error_code ec;
+  if (!file.empty() && fs::exists(file, ec)) return load_record(file);
+  const Scene reference_scene = scene_of(o, grid[0]);
+  Progress progress(Progress::wanted(o.quiet), reference_scene.simulated_frames(),
+                    "reference (point 0)");
+  RunRecord reference = record_run(reference_scene, &progress);
+  if (!file.empty()) save_record(reference, file);
+  return reference;
+}
+
+// Runs `points` (indices) in this process, against the reference.
 std::vector<std::string> run_points(const SweepOptions& o, const std::vector<SweepPoint>& grid,
                                     const std::vector<int>& points) {
   const MetricWindow window{o.horizon_s};
-  const Scene reference_scene = scene_of(o, grid[0]);
-  Progress reference_progress(Progress::wanted(o.quiet), reference_scene.simulated_frames(),
-                              "reference (point 0)");
-  const RunRecord reference = record_run(reference_scene, &reference_progress);
+  // The reference is run only when a point needs it and no saved one is given.
+  const RunRecord reference = reference_run(o, grid, o.reference_file);
   std::vector<std::string> lines;
   for (int i : points) {
     const Scene scene = scene_of(o, grid[std::size_t(i)]);
@@ -182,15 +194,20 @@ std::vector<std::string> child_arguments(const std::vector<std::string>& argv) {
   return args;
 }
 
-// Runs every point in child processes `flag-sim sweep ... --point I`, `jobs` at a time.
+// Runs every point in child processes `flag-sim sweep ... --point I`, `jobs` at
+// a time, each reading the reference from `reference_file` (run once, here).
 std::vector<std::string> run_children(const std::vector<std::string>& argv, int count, int jobs,
-                                      const fs::path& dir) {
+                                      const fs::path& dir, const std::string& reference_file) {
   std::vector<std::string> lines;
   std::map<pid_t, int> running;
+  const bool has_reference_file =
+      std::any_of(argv.begin(), argv.end(), [](const std::string& a) {
+        return a == "--reference-file" || a.starts_with("--reference-file=");
+      });
   int next = 0, failed = -1;
-  // SIGINT / SIGTERM to this process: stop starting points, pass SIGTERM on
-  // to every worker, wait for them all (none is left orphaned), exit 130.
-  const InterruptGuard interrupt;
+  // SIGINT / SIGTERM to this process (the caller's InterruptGuard): stop
+  // starting points, pass SIGTERM on to every worker, wait for them all (none
+  // is left orphaned), exit 130.
   auto reap = [&] {
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);  // a signal interrupts it (EINTR)
@@ -222,6 +239,7 @@ std::vector<std::string> run_children(const std::vector<std::string>& argv, int 
       std::vector<std::string> args = child_arguments(argv);
       args.insert(args.end(), {"--point", std::to_string(next), "-o",
                                (dir / fmt::format("point_{}.csv", next)).string(), "--quiet"});
+      if (!has_reference_file) args.insert(args.end(), {"--reference-file", reference_file});
       std::vector<char*> c_args;
       for (std::string& a : args) c_args.push_back(a.data());
       c_args.push_back(nullptr);
@@ -246,6 +264,13 @@ std::vector<std::string> run_children(const std::vector<std::string>& argv, int 
 }  // namespace
 
 int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
+  if (o.list) {  // the points, as --point and the CSV number them; nothing runs
+    const std::vector<SweepPoint> grid = grid_of(o);
+    for (const SweepPoint& point : grid) scene_of(o, point);  // each checked, as a run would
+    for (std::size_t i = 0; i < grid.size(); ++i)
+      fmt::print("{:>3}  {:<40} {}\n", i, grid[i].label, fmt::join(grid[i].sets, " "));
+    return int(ExitCode::kSuccess);
+  }
   if (o.output.empty()) throw UserError("sweep: -o SWEEP.csv is required");
   check_report_path(o.output);
   if (!o.plot.empty()) {
@@ -258,8 +283,16 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   files.output(o.output, "the sweep CSV");
   files.output(o.plot, "--plot");
   if (!o.point && o.jobs > 1) files.output(o.output + ".points", "the points' directory");
+  if (!o.reference_file.empty()) {  // read when it is there, written when it is not
+    std::error_code ec;
+    if (fs::exists(o.reference_file, ec))
+      files.input(o.reference_file, "--reference-file");
+    else
+      files.output(o.reference_file, "--reference-file");
+  }
   files.check();
   std::vector<std::string> lines;
+  std::string plot_title;  // lattice, frames and duration, when the scene is known here
   if (!o.merge.empty()) {  // join the CSVs of points run separately
     std::map<int, std::string> by_point;
     for (const std::string& file : o.merge)
@@ -275,11 +308,23 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     // Every point's scene is checked before anything runs (a coarse lattice
     // that does not divide the fine one is exit 2 now, not an hour in).
     for (const SweepPoint& point : grid) scene_of(o, point);
+    {
+      const Scene reference = scene_of(o, grid[0]);
+      const int frames = reference.simulated_frames();
+      plot_title = fmt::format(
+          "What accuracy costs: {} x {} dense lattice, {} frames ({:.3g} s at {:.3g} fps), "
+          "against the mass-spring reference",
+          reference.flag.fine_rows, reference.flag.fine_cols, frames, (frames - 1) / reference.fps,
+          reference.fps);
+    }
     const int count = int(grid.size());
     if (o.point && (*o.point < 0 || *o.point >= count))
       throw UserError(
           fmt::format("--point {}: this sweep has points 0 to {}", *o.point, count - 1));
     if (o.jobs < 1) throw UserError(fmt::format("--jobs {}: expected at least 1", o.jobs));
+    // SIGINT / SIGTERM: the run in progress stops at its next substep (exit
+    // 130, nothing written); with --jobs, the workers are stopped too.
+    const InterruptGuard interrupt;
     if (o.point) {
       lines = run_points(o, grid, {*o.point});
     } else if (o.jobs > 1) {
@@ -294,7 +339,21 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
       if (!fs::create_directories(dir, ec))
         throw IoError(
             fmt::format("{}: cannot create the points directory: {}", dir.string(), ec.message()));
-      lines = run_children(argv, count, o.jobs, dir);
+      // The reference once, before the workers: each reads it instead of re-running it.
+      const std::string reference_file =
+          o.reference_file.empty() ? (dir / "reference.rec").string() : o.reference_file;
+      try {
+        reference_run(o, grid, reference_file);
+      } catch (const Interrupted&) {
+        fs::remove_all(dir, ec);
+        throw Interrupted(fmt::format(
+            "sweep: stopped by a signal while running the reference (point 0); no worker had "
+            "started, nothing is written"));
+      } catch (...) {
+        fs::remove_all(dir, ec);
+        throw;
+      }
+      lines = run_children(argv, count, o.jobs, dir, reference_file);
       fs::remove_all(dir);
     } else {
       std::vector<int> all(static_cast<std::size_t>(count));
@@ -303,7 +362,17 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     }
   }
   write_rows(o.output, lines);
-  if (!o.plot.empty()) run_plot_script(sweep_plot_script(), {o.output, o.plot}, o.plot);
+  if (!o.plot.empty()) {
+    std::vector<std::string> args = {o.output, o.plot};
+    if (!plot_title.empty()) args.push_back(plot_title);
+    run_plot_script(sweep_plot_script(), args, o.plot);
+  }
+  // The table compare prints, for the whole sweep (a single --point prints only its CSV row).
+  if (!o.point) {
+    std::vector<ReportRow> rows;
+    for (const std::string& line : lines) rows.push_back(parse_csv_line(line));
+    fmt::print("{}", text_table(rows));
+  }
   if (!o.quiet)
     fmt::print("sweep: {} points -> {}{}\n", lines.size(), o.output,
                o.plot.empty() ? "" : fmt::format(", {}", o.plot));

@@ -1,5 +1,9 @@
-# flag-sim sweep --plot: error against cost, log axes (embedded in the binary,
-# run with /usr/bin/python3 - CSV PNG).
+# flag-sim sweep --plot: what accuracy costs (embedded in the binary, run with
+# /usr/bin/python3 - CSV PNG [TITLE]). Left: mean-shape error against ms per
+# frame, log axes, the Pareto front of the hybrid points, the references.
+# Right: the strain the paper infill's relaxation cap buys (max link strain
+# against the cap, one line per coarse lattice and substep count), the smooth
+# infill's points beside it.
 import csv
 import sys
 
@@ -7,8 +11,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.transforms  # noqa: E402
 
 csv_path, png_path = sys.argv[1], sys.argv[2]
+title = sys.argv[3] if len(sys.argv) > 3 else ""
 rows = list(csv.DictReader(open(csv_path)))
 error_key = "mean_shape_rms_m"
 
@@ -20,15 +26,23 @@ def value(row, key):
         return None
 
 
-fig, ax = plt.subplots(figsize=(8, 5.5), dpi=100)
+def short_label(r):
+    """coarse lattice, s = substeps per frame, r = the paper infill's relaxation cap."""
+    label = f"{r['coarse']} s{r['substeps']}"
+    if r.get("infill_solver") == "smooth":
+        return label + " smooth"
+    return label + f" r{r['relax_iterations']}"
+
+
+fig, (ax, ax_strain) = plt.subplots(1, 2, figsize=(13, 5.5), dpi=100,
+                                    gridspec_kw={"width_ratios": [3, 2]})
 hybrid = [r for r in rows if r["mode"] == "hybrid" and value(r, error_key)]
 points = sorted(((value(r, "ms_per_frame"), value(r, error_key), r) for r in hybrid),
                 key=lambda p: p[0])
 ax.scatter([p[0] for p in points], [1e3 * p[1] for p in points], color="tab:blue", zorder=3,
            label="hybrid")
-for ms, err, r in points:
-    label = f"{r['coarse']} s{r['substeps']} r{r['relax_iterations']}"
-    ax.annotate(label, (ms, 1e3 * err), textcoords="offset points", xytext=(4, 4), fontsize=7)
+ax.set_xscale("log")
+ax.set_yscale("log")
 front, best = [], float("inf")
 for ms, err, _ in points:  # cheapest first: a point is on the front if nothing cheaper beats it
     if err < best:
@@ -44,13 +58,66 @@ for r in rows:
     if r["mode"] == "mass-spring":
         ax.axvline(value(r, "ms_per_frame"), color="k", linestyle="--",
                    label="mass-spring reference (error 0)")
-ax.set_xscale("log")
-ax.set_yscale("log")
 ax.set_xlabel("ms per output frame (one core)")
 ax.set_ylabel("mean-shape RMS error vs mass-spring, mm")
-fine = rows[0]["fine"] if rows else "?"
-ax.set_title(f"What accuracy costs: {fine} dense lattice")
 ax.grid(True, which="both", alpha=0.3)
-ax.legend(fontsize=8)
+ax.legend(fontsize=8, loc="upper right")
+ax.text(0.01, 0.01, "labels: coarse lattice, s = physics substeps per frame,\n"
+        "r = the paper infill's step-3.4 pass cap (smooth: the smooth infill)",
+        transform=ax.transAxes, fontsize=7, color="0.3", va="bottom")
+
+# The relaxation cap against the strain it leaves, per coarse lattice and substeps.
+paper = [r for r in hybrid if r.get("infill_solver") != "smooth" and value(r, "relax_iterations")]
+series = {}
+for r in paper:
+    series.setdefault((r["coarse"], r["substeps"]), []).append(
+        (value(r, "relax_iterations"), 100 * value(r, "max_strain")))
+smooth = [r for r in hybrid if r.get("infill_solver") == "smooth"]
+# One colour per coarse lattice and substeps, shared by its paper line and smooth level.
+keys = sorted(set(series) | {(r["coarse"], r["substeps"]) for r in smooth})
+colour = {key: f"C{i % 10}" for i, key in enumerate(keys)}
+for (coarse, substeps), xy in sorted(series.items()):
+    xy.sort()
+    ax_strain.plot([p[0] for p in xy], [p[1] for p in xy], marker="o",
+                   color=colour[(coarse, substeps)], label=f"paper {coarse} s{substeps}")
+for r in smooth:
+    ax_strain.axhline(100 * value(r, "max_strain"), linestyle=":", linewidth=1.2,
+                      color=colour[(r["coarse"], r["substeps"])],
+                      label=f"smooth {r['coarse']} s{r['substeps']}")
+ax_strain.axhline(1.0, color="tab:red", linewidth=0.8, label="1% (fibers' bound)")
+if series:
+    ax_strain.set_xscale("log")
+ax_strain.set_xlabel("relaxation cap (step 3.4 passes per frame)")
+ax_strain.set_ylabel("max link strain over the run, %")
+ax_strain.set_title("The strain the relaxation cap buys", fontsize=10)
+ax_strain.grid(True, which="both", alpha=0.3)
+if series or smooth:
+    ax_strain.legend(fontsize=7)
+else:
+    ax_strain.text(0.5, 0.5, "no relaxation cap swept (--relax)", ha="center",
+                   transform=ax_strain.transAxes, color="0.4")
+
+fine = rows[0]["fine"] if rows else "?"
+frames = rows[0]["frames"] if rows else "?"
+fig.suptitle(title or f"What accuracy costs: {fine} dense lattice, {frames} frames", fontsize=11)
+# Each label at the first of a few places around its point where it overlaps
+# no label placed before it (nor any point), cheapest point first; placed
+# after the layout is final, in display coordinates.
 fig.tight_layout()
+fig.canvas.draw()
+renderer = fig.canvas.get_renderer()
+placed = []
+for ms, err, _ in points:
+    x, y = ax.transData.transform((ms, 1e3 * err))
+    placed.append(matplotlib.transforms.Bbox.from_bounds(x - 4, y - 4, 8, 8))
+offsets = [(5, 3), (5, -10), (-5, 3), (-5, -10), (5, 13), (5, -20), (-5, 13), (-5, -20)]
+for ms, err, r in points:
+    for dx, dy in offsets:
+        note = ax.annotate(short_label(r), (ms, 1e3 * err), textcoords="offset points",
+                           xytext=(dx, dy), fontsize=7, ha="left" if dx > 0 else "right")
+        box = note.get_window_extent(renderer)
+        if not any(box.overlaps(other) for other in placed) or (dx, dy) == offsets[-1]:
+            placed.append(box)
+            break
+        note.remove()
 fig.savefig(png_path)

@@ -1,6 +1,8 @@
 // `flag-sim compare` and `flag-sim sweep` end to end, on a small lattice.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <fstream>
 #include <sstream>
 
@@ -9,6 +11,7 @@
 
 namespace flagsim::test {
 namespace {
+namespace fs = std::filesystem;
 
 const std::vector<std::string> kSmall = {"--set", "flag.fine=[17,25]", "--frames", "21"};
 
@@ -95,6 +98,50 @@ TEST(Sweep, PointsRunAloneAndMergedEqualTheWholeSweep) {
       run_flag_sim({"sweep", "-o", "x.csv", "--merge", "p0.csv", "p0.csv"}, dir.path());
   EXPECT_EQ(twice.exit_code, 2);
   EXPECT_NE(twice.err.find("point 0 appears twice"), std::string::npos) << twice.err;
+}
+
+// The reference runs once and is shared: a point given --reference-file reads
+// it (a file that is not a record is refused, so nothing was re-run), and its
+// rows are those of a point that ran the reference itself.
+TEST(Sweep, PointsShareOneSavedReference) {
+  TempDir dir;
+  std::vector<std::string> base = {"sweep", "--coarse", "5x7", "--quiet"};
+  base.insert(base.end(), kSmall.begin(), kSmall.end());
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  ASSERT_EQ(run_flag_sim(with({"-o", "alone.csv", "--point", "2"}), dir.path()).exit_code, 0);
+  ASSERT_EQ(run_flag_sim(with({"-o", "ref.csv", "--point", "0", "--reference-file", "ref.rec"}),
+                         dir.path())
+                .exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(dir.file("ref.rec")));
+  EXPECT_FALSE(fs::exists(dir.file("ref.rec.partial")));
+  ASSERT_EQ(run_flag_sim(with({"-o", "shared.csv", "--point", "2", "--reference-file", "ref.rec"}),
+                         dir.path())
+                .exit_code,
+            0);
+  EXPECT_EQ(without_timing(read_csv(dir.file("shared.csv"))),
+            without_timing(read_csv(dir.file("alone.csv"))));
+  dir.write("bad.rec", "not a record");
+  const ProcessResult bad =
+      run_flag_sim(with({"-o", "b.csv", "--point", "2", "--reference-file", "bad.rec"}), dir.path());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.rec: not a whole flag-sim run record"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir.file("b.csv")));
+  // --list names the points and runs nothing; the whole sweep ends with compare's table.
+  const ProcessResult list = run_flag_sim(with({"--list"}), dir.path());
+  ASSERT_EQ(list.exit_code, 0) << list.err;
+  EXPECT_NE(list.out.find("  2  hybrid 5x7"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("flag.coarse=[5,7]"), std::string::npos) << list.out;
+  const ProcessResult whole = run_flag_sim(with({"-o", "w.csv", "--jobs", "2"}), dir.path());
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_NE(whole.out.find("run                                 ms/frame"), std::string::npos)
+      << whole.out;
+  EXPECT_NE(whole.out.find("hybrid 5x7"), std::string::npos) << whole.out;
+  EXPECT_FALSE(fs::exists(dir.file("w.csv.points")));  // the workers' directory is gone
 }
 
 TEST(Sweep, PlotsErrorAgainstCost) {

@@ -178,6 +178,13 @@ TEST(SceneCommand, DefaultSceneRoundTrips) {
   EXPECT_EQ(run_flag_sim({"validate", "d.toml"}, dir.path()).exit_code, 0);
 }
 
+// Four frames of the default scene's hybrid on 17 x 25 into `dir`/`name`; the exit code.
+int small_hybrid_run(const TempDir& dir, const std::string& name) {
+  return run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "4", "-o", name, "--quiet"},
+                      dir.path())
+      .exit_code;
+}
+
 // `scene FILE --set ...` prints what a run would take: the overrides applied,
 // as TOML that runs the same scene again.
 TEST(SceneCommand, PrintsTheSceneWithItsOverrides) {
@@ -216,11 +223,7 @@ TEST(Version, NamesTheLibraries) {
 // (9 x 8 in at 100 dpi), written whole or not at all.
 TEST(Plot, DrawsTheStatisticsOfARun) {
   TempDir dir;
-  ASSERT_EQ(
-      run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "4", "-o", "p.h5", "--quiet"},
-                   dir.path())
-          .exit_code,
-      0);
+  ASSERT_EQ(small_hybrid_run(dir, "p.h5"), 0);
   const ProcessResult plotted = run_flag_sim({"plot", "p.h5", "-o", "stats.png"}, dir.path());
   ASSERT_EQ(plotted.exit_code, 0) << plotted.err;
   std::ifstream png(dir.file("stats.png"), std::ios::binary);
@@ -261,11 +264,7 @@ TEST(Info, SummarisesARun) {
 // (Python's json here), with the hybrid's infill account.
 TEST(Info, JsonCarriesTheSameFacts) {
   TempDir dir;
-  ASSERT_EQ(
-      run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames", "4", "-o", "h.h5", "--quiet"},
-                   dir.path())
-          .exit_code,
-      0);
+  ASSERT_EQ(small_hybrid_run(dir, "h.h5"), 0);
   const ProcessResult json = run_flag_sim({"info", "h.h5", "--json"}, dir.path());
   ASSERT_EQ(json.exit_code, 0) << json.err;
   dir.write("info.json", json.out);
