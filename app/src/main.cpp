@@ -107,6 +107,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--frames", render.frames,
                          "Frames A:B (A to B - 1, as numbered in the file)");
   render_cmd->add_option("--camera", render.camera, "three-quarter (default), front or side");
+  render_cmd->add_option("--eye", render.eye, "Camera position X,Y,Z in m (instead of --camera)");
+  render_cmd->add_option("--target", render.target,
+                         "What the --eye camera looks at, X,Y,Z in m (default: the run's centre)");
   render_cmd->add_option("--color", render.color,
                          "Colour the shaded cloth by strain or speed (one scale for all frames)");
 

@@ -42,6 +42,28 @@ std::pair<int, int> parse_size(const std::string& text) {
   return {w, h};
 }
 
+// --eye / --target X,Y,Z in metres, each within the coordinate limit.
+Vec3 parse_point(const std::string& flag, const std::string& text) {
+  static const std::regex number(R"(^\s*([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)\s*$)");
+  Vec3 p;
+  std::size_t start = 0;
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t comma = c < 2 ? text.find(',', start) : text.size();
+    std::smatch m;
+    const std::string item = comma == std::string::npos ? "" : text.substr(start, comma - start);
+    if (comma == std::string::npos || !std::regex_match(item, m, number) ||
+        (c == 2 && text.find(',', start) != std::string::npos))
+      throw UserError(fmt::format("{} {}: expected X,Y,Z in metres, e.g. 0.75,1.5,4", flag,
+                                  printable(text)));
+    p[c] = std::stod(m[1]);
+    if (!std::isfinite(p[c]) || std::abs(p[c]) > limits::kCoordinate_m)
+      throw UserError(fmt::format("{} {}: each coordinate within {} m", flag, printable(text),
+                                  limits::kCoordinate_m));
+    start = comma + 1;
+  }
+  return p;
+}
+
 bool ends_with(const std::string& text, const std::string& tail) {
   return text.size() >= tail.size() &&
          text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
@@ -123,6 +145,13 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
     plan.view = *view;
   }
   if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_frame_range(*request.frames);
+  if (request.eye) plan.eye_m = parse_point("--eye", *request.eye);
+  if (request.target) plan.target_m = parse_point("--target", *request.target);
+  if (request.target && !request.eye)
+    throw UserError(fmt::format("--target {}: goes with --eye X,Y,Z", *request.target));
+  if (request.eye && request.camera)
+    throw UserError(fmt::format("--eye {}: give --eye or --camera {}, not both", *request.eye,
+                                *request.camera));
   if (request.color) {
     if (*request.color == "strain")
       plan.color = ColorBy::kStrain;
@@ -173,6 +202,15 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   options.style = plan.style;
   options.texture = plan.texture;
   options.camera = render::frame_bounds(bounds, double(plan.width) / plan.height, plan.view);
+  if (plan.eye_m) {  // the automatic camera's field of view, from where the user said
+    options.camera.eye_m = *plan.eye_m;
+    if (plan.target_m) options.camera.target_m = *plan.target_m;
+    if ((options.camera.target_m - options.camera.eye_m).norm() < 1e-6)
+      throw UserError("--eye: the camera is at the point it looks at; move it or give --target");
+    if ((options.camera.target_m - options.camera.eye_m).normalized().cross(options.camera.up).norm() <
+        1e-6)
+      options.camera.up = Vec3::UnitZ();  // looking straight down or up: y cannot be up
+  }
   // The range, against the file (the camera above still frames the whole run).
   const auto [first, last] =
       resolve_frame_range({plan.first_frame, plan.last_frame}, frames, h5_path);

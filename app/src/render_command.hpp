@@ -26,6 +26,8 @@ struct RenderRequest {
   std::optional<std::string> frames;   ///< --frames A:B (render only)
   std::optional<std::string> camera;   ///< --camera three-quarter|front|side
   std::optional<std::string> color;    ///< --color strain|speed
+  std::optional<std::string> eye;      ///< --eye X,Y,Z (m): an explicit camera position
+  std::optional<std::string> target;   ///< --target X,Y,Z (m): what it looks at
 };
 
 /// What the shaded cloth is coloured by (--color).
@@ -44,6 +46,8 @@ struct RenderPlan {
   /// Frames first .. last - 1 are drawn (last -1: to the end), numbered as in the file.
   int first_frame = 0, last_frame = -1;
   ColorBy color = ColorBy::kNone;
+  /// --eye / --target: an explicit camera (target: the run's centre when not given).
+  std::optional<Vec3> eye_m, target_m;
   bool quiet = false;  ///< no progress line (run --quiet)
   CreatedDirectories directories;  ///< made for the output; removed again if left empty
 };

@@ -96,6 +96,12 @@ TEST(Render, VideoContainersAndTheirFrameRate) {
                                             dir.path());
     EXPECT_EQ(probe.out, "10/1\n") << name << probe.err;
   }
+  // 13 frames written every 3rd: 5 frames of a 30 fps run, 5 x 3 / 30 = 0.5 s of video.
+  const ProcessResult duration =
+      run_process("/usr/bin/ffprobe",
+                  {"-v", "error", "-show_entries", "format=duration", "-of", "csv=p=0", "v.mp4"},
+                  dir.path());
+  EXPECT_NEAR(std::stod(duration.out.empty() ? "0" : duration.out), 0.5, 1e-3) << duration.err;
 }
 
 // A name with another extension is refused, not made into a directory of
@@ -136,11 +142,29 @@ TEST(Render, AFrameRangeAndACameraView) {
                 .exit_code,
             0);
   EXPECT_NE(bytes(dir.file("side/frame_00001.png")), bytes(dir.file("part/frame_00001.png")));
+  // An explicit camera: from where --eye says, at --target (default: the run's centre).
+  ASSERT_EQ(run_flag_sim({"render", "r.h5", "-o", "eye", "--frames", "1:2", "--eye", "3,3,3",
+                          "--size", "160x90"},
+                         dir.path())
+                .exit_code,
+            0);
+  ASSERT_EQ(run_flag_sim({"render", "r.h5", "-o", "eye_target", "--frames", "1:2", "--eye",
+                          "3,3,3", "--target", "0,2,0", "--size", "160x90"},
+                         dir.path())
+                .exit_code,
+            0);
+  EXPECT_NE(bytes(dir.file("eye/frame_00001.png")), bytes(dir.file("part/frame_00001.png")));
+  EXPECT_NE(bytes(dir.file("eye/frame_00001.png")), bytes(dir.file("eye_target/frame_00001.png")));
   for (const auto& [args, words] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--frames", "2:9"}, "--frames 2:9: r.h5 has frames 0 to 3"},
            {{"--frames", "3:1"}, "the range is empty"},
            {{"--frames", "a:b"}, "expected A:B"},
-           {{"--camera", "top"}, "--camera top: expected one of"}}) {
+           {{"--camera", "top"}, "--camera top: expected one of"},
+           {{"--eye", "1,2"}, "--eye 1,2: expected X,Y,Z in metres"},
+           {{"--eye", "1,2,3,4"}, "--eye 1,2,3,4: expected X,Y,Z"},
+           {{"--eye", "1,2,2e5"}, "each coordinate within"},
+           {{"--target", "1,2,3"}, "--target 1,2,3: goes with --eye"},
+           {{"--eye", "1,2,3", "--camera", "side"}, "give --eye or --camera side, not both"}}) {
     std::vector<std::string> command = {"render", "r.h5", "-o", "bad", "--size", "160x90"};
     command.insert(command.end(), args.begin(), args.end());
     const ProcessResult result = run_flag_sim(command, dir.path());
