@@ -5,7 +5,7 @@
 #
 # Usage: scripts/setup.sh [--test-deps] [--no-build]
 #   --test-deps  also the outside programs the tests run for real (ParaView's
-#                pvpython, meshio); scripts/test.sh passes it
+#                pvpython, meshio, Slurm and munge); scripts/test.sh passes it
 set -euo pipefail
 test_deps=0
 build=1
@@ -29,8 +29,9 @@ packages=(
 )
 if ((test_deps)); then
   # tests/app/paraview_test.py: ParaView's default XDMF reader, run by pvpython;
-  # tests/app/export_test.py: meshio reads the exported OBJ
-  packages+=(paraview python3-paraview python3-meshio)
+  # tests/app/export_test.py: meshio reads the exported OBJ;
+  # tests/app/slurm_test.py: a one-node Slurm (no daemon starts by itself)
+  packages+=(paraview python3-paraview python3-meshio slurmctld slurmd slurm-client munge)
 fi
 
 missing=()

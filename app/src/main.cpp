@@ -156,6 +156,14 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--reference-file", sweep.reference_file,
                         "The reference run: read if there, else run and saved there");
   sweep_cmd->add_flag("--list", sweep.list, "Print the points (index, label, settings) and exit");
+  sweep_cmd->add_flag("--resume", sweep.resume,
+                      "With --point: do nothing when -o already holds the point's row");
+  sweep_cmd->add_option("--slurm", sweep.slurm_dir,
+                        "Write DIR/reference.sbatch, sweep.sbatch (array), merge.sbatch instead");
+  sweep_cmd->add_flag("--submit", sweep.submit, "With --slurm: submit the jobs with sbatch");
+  sweep_cmd->add_option("--slurm-arg", sweep.slurm_args,
+                        "An #SBATCH option for every job, e.g. --slurm-arg=--partition=short")
+      ->allow_extra_args(false);
   std::vector<std::string> arguments(argv, argv + argc);
 
   // `flag-sim help [COMMAND]`, and a misspelt command named as such (CLI11

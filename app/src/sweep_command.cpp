@@ -26,6 +26,7 @@
 #include "python_plot.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
+#include "slurm_sweep.hpp"
 
 extern char** environ;
 
@@ -261,6 +262,49 @@ std::vector<std::string> run_children(const std::vector<std::string>& argv, int 
   return lines;
 }
 
+// The arguments that make this sweep's points, for commands run elsewhere
+// (Slurm jobs): flag-sim's absolute path, "sweep", the scene and the grid.
+std::vector<std::string> point_command(const SweepOptions& o) {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  std::vector<std::string> args = {ec ? std::string("flag-sim") : exe.string(), "sweep"};
+  if (!o.scene_path.empty()) args.push_back(fs::absolute(o.scene_path).lexically_normal().string());
+  const auto add = [&](const char* flag, const std::string& value) {
+    if (!value.empty()) args.insert(args.end(), {flag, value});
+  };
+  add("--coarse", o.coarse);
+  add("--substeps", o.substeps);
+  add("--relax", o.relax);
+  add("--infill", o.infill);
+  if (o.frames) add("--frames", std::to_string(*o.frames));
+  add("--horizon", fmt::format("{}", o.horizon_s));
+  for (const std::string& set : o.sets) add("--set", set);
+  return args;
+}
+
+// --slurm DIR: the sweep as batch jobs (slurm_sweep.hpp), nothing run here.
+int slurm_sweep(const SweepOptions& o) {
+  if (o.point || o.jobs > 1 || !o.merge.empty())
+    throw UserError("--slurm: runs every point as a Slurm job; leave out --point, --jobs, --merge");
+  if (!(o.horizon_s > 0.0))
+    throw UserError(fmt::format("--horizon {}: expected a duration > 0 s", o.horizon_s));
+  const std::vector<SweepPoint> grid = grid_of(o);
+  for (const SweepPoint& point : grid) scene_of(o, point);  // checked now, not on the cluster
+  check_report_path(o.output);
+  if (!o.plot.empty()) check_report_path(o.plot);
+  FileRoles files;
+  files.input(o.scene_path, "the scene");
+  files.output(o.output, "the sweep CSV");
+  files.output(o.plot, "--plot");
+  files.output(o.slurm_dir, "--slurm");
+  files.check();
+  const std::string csv = fs::absolute(o.output).lexically_normal().string();
+  const std::string plot = o.plot.empty() ? "" : fs::absolute(o.plot).lexically_normal().string();
+  fmt::print("{}", write_slurm_sweep({o.slurm_dir, o.submit, o.slurm_args}, point_command(o),
+                                     int(grid.size()), csv, plot));
+  return int(ExitCode::kSuccess);
+}
+
 }  // namespace
 
 int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
@@ -272,6 +316,11 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     return int(ExitCode::kSuccess);
   }
   if (o.output.empty()) throw UserError("sweep: -o SWEEP.csv is required");
+  if (o.submit && o.slurm_dir.empty()) throw UserError("--submit: goes with --slurm DIR");
+  if (!o.slurm_args.empty() && o.slurm_dir.empty())
+    throw UserError("--slurm-arg: goes with --slurm DIR");
+  if (o.resume && !o.point) throw UserError("--resume: goes with --point I");
+  if (!o.slurm_dir.empty()) return slurm_sweep(o);
   check_report_path(o.output);
   if (!o.plot.empty()) {
     check_report_path(o.plot);
@@ -325,6 +374,10 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     // SIGINT / SIGTERM: the run in progress stops at its next substep (exit
     // 130, nothing written); with --jobs, the workers are stopped too.
     const InterruptGuard interrupt;
+    if (o.point && o.resume && sweep_point_done(o.output, *o.point)) {
+      if (!o.quiet) fmt::print("sweep: point {} is already in {}\n", *o.point, o.output);
+      return int(ExitCode::kSuccess);
+    }
     if (o.point) {
       lines = run_points(o, grid, {*o.point});
     } else if (o.jobs > 1) {

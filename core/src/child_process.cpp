@@ -57,6 +57,43 @@ int ChildProcess::wait() {
   return done > 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+int run_capturing(const std::vector<std::string>& argv, std::string& output) {
+  output.clear();
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  int fds[2] = {-1, -1};
+  if (::pipe2(fds, O_CLOEXEC) != 0) return -1;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+  pid_t pid = -1;
+  const int failed = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[1]);
+  if (failed != 0) {
+    ::close(fds[0]);
+    return -1;
+  }
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n > 0) {
+      output.append(buffer, std::size_t(n));
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  ::close(fds[0]);
+  int status = 0;
+  pid_t done;
+  do done = ::waitpid(pid, &status, 0);
+  while (done < 0 && errno == EINTR);
+  return done > 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 int run_quietly(const std::vector<std::string>& argv) {
   ChildProcess child(argv, false, true);
   return child.valid() ? child.wait() : -1;

@@ -144,6 +144,58 @@ TEST(Sweep, PointsShareOneSavedReference) {
   EXPECT_FALSE(fs::exists(dir.file("w.csv.points")));  // the workers' directory is gone
 }
 
+// --slurm writes batch scripts that /bin/sh runs as Slurm would (the task id
+// in the environment), whatever the scene's name; merged, they give the
+// --jobs sweep's rows; written again, they leave out what is done.
+TEST(Sweep, SlurmScriptsRunAsTheSweep) {
+  TempDir dir;
+  const std::string scene = "it's a \"scene\" $HOME.toml";
+  const ProcessResult printed = run_flag_sim({"scene", "--default"});
+  dir.write(scene, printed.out);
+  std::vector<std::string> base = {"sweep", scene, "--coarse", "5x7", "--quiet"};
+  base.insert(base.end(), kSmall.begin(), kSmall.end());
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  const ProcessResult written =
+      run_flag_sim(with({"-o", "slurm.csv", "--slurm", "jobs", "--slurm-arg=--time=5"}), dir.path());
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  EXPECT_NE(written.out.find("sweep.sbatch (points 1-2)"), std::string::npos) << written.out;
+  const auto sh = [&](const std::string& script, const std::string& task) {
+    return run_process("/usr/bin/env", {"SLURM_ARRAY_TASK_ID=" + task, "/bin/sh", script},
+                       dir.path());
+  };
+  ASSERT_EQ(sh("jobs/reference.sbatch", "").exit_code, 0);
+  for (const char* task : {"1", "2"}) {
+    const ProcessResult point = sh("jobs/sweep.sbatch", task);
+    ASSERT_EQ(point.exit_code, 0) << task << point.err;
+  }
+  ASSERT_EQ(sh("jobs/merge.sbatch", "").exit_code, 0);
+  ASSERT_EQ(run_flag_sim(with({"-o", "jobs.csv", "--jobs", "2"}), dir.path()).exit_code, 0);
+  EXPECT_EQ(without_timing(read_csv(dir.file("slurm.csv"))),
+            without_timing(read_csv(dir.file("jobs.csv"))));
+  const ProcessResult again =
+      run_flag_sim(with({"-o", "slurm.csv", "--slurm", "jobs"}), dir.path());
+  EXPECT_NE(again.out.find("reference.sbatch (done, left out), sweep.sbatch (points none left)"),
+            std::string::npos)
+      << again.out;
+  EXPECT_EQ(sh("jobs/sweep.sbatch", "1").exit_code, 0);  // a task whose row is there: done at once
+  for (const auto& [args, words] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"-o", "x.csv", "--slurm", "bad dir"}, "--slurm bad dir: use a directory path of"},
+           {{"-o", "x.csv", "--submit"}, "--submit: goes with --slurm DIR"},
+           {{"-o", "x.csv", "--slurm", "j2", "--slurm-arg=--time 10"}, "expected one sbatch option"},
+           {{"-o", "x.csv", "--slurm", "j2", "--jobs", "2"}, "leave out --point, --jobs"},
+           {{"-o", "x.csv", "--resume"}, "--resume: goes with --point I"}}) {
+    const ProcessResult refused = run_flag_sim(with(args), dir.path());
+    EXPECT_EQ(refused.exit_code, 2) << words;
+    EXPECT_NE(refused.err.find(words), std::string::npos) << refused.err;
+  }
+  EXPECT_FALSE(fs::exists(dir.file("bad dir")));
+  EXPECT_FALSE(fs::exists(dir.file("j2")));
+}
+
 TEST(Sweep, PlotsErrorAgainstCost) {
   TempDir dir;
   std::vector<std::string> args = {"sweep", "--coarse", "5x7",   "-o",

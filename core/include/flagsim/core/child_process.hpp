@@ -35,4 +35,8 @@ class ChildProcess {
 /// Runs argv to the end with no input and no output; its exit code (-1: could not start).
 int run_quietly(const std::vector<std::string>& argv);
 
+/// Runs argv to the end with no input; `output` receives what it wrote to its
+/// standard output and error, interleaved. Its exit code (-1: could not start).
+int run_capturing(const std::vector<std::string>& argv, std::string& output);
+
 }  // namespace flagsim
