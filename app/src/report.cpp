@@ -19,10 +19,27 @@ std::string optional_text(const std::optional<double>& value) {
   return value ? fmt::format("{:.6g}", *value) : std::string();
 }
 
-// The fly end's middle node's out-of-plane position over the second half.
-std::vector<double> fly_end_signal(const RunRecord& run) {
+// The node whose flapping is measured: the middle of the edge opposite the
+// pinned one (the fly end), the middle of the cloth when no edge is pinned.
+std::size_t fly_end_node(const Lattice& l, PinSet pin) {
+  switch (pin) {
+    case PinSet::kLeft:
+      return l.index(l.rows / 2, l.cols - 1);
+    case PinSet::kRight:
+      return l.index(l.rows / 2, 0);
+    case PinSet::kTop:
+      return l.index(l.rows - 1, l.cols / 2);
+    case PinSet::kCorners:
+    case PinSet::kNone:
+      break;
+  }
+  return l.index(l.rows / 2, l.cols / 2);
+}
+
+// The fly end's out-of-plane position over the second half.
+std::vector<double> fly_end_signal(const RunRecord& run, PinSet pin) {
   const Lattice& l = run.lattice;
-  const std::size_t node = l.index(l.rows / 2, l.cols - 1);
+  const std::size_t node = fly_end_node(l, pin);
   std::vector<double> z;
   for (std::size_t t = run.frames.size() / 2; t < run.frames.size(); ++t)
     z.push_back(run.frames[t][node].z());
@@ -61,8 +78,9 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
   const int half = int(std::min(run.frames.size(), reference.frames.size()) / 2);
   row.short_horizon_rms_m = analysis::short_horizon_rms(run.frames, reference.frames, horizon);
   row.mean_shape_rms_m = analysis::mean_shape_rms(run.frames, reference.frames, half);
-  row.flap_hz = analysis::flap_frequency_hz(fly_end_signal(run), scene.fps);
-  const double reference_hz = analysis::flap_frequency_hz(fly_end_signal(reference), scene.fps);
+  row.flap_hz = analysis::flap_frequency_hz(fly_end_signal(run, scene.flag.pin), scene.fps);
+  const double reference_hz =
+      analysis::flap_frequency_hz(fly_end_signal(reference, scene.flag.pin), scene.fps);
   if (reference_hz > 0.0) row.flap_rel_error = std::abs(*row.flap_hz - reference_hz) / reference_hz;
   row.wrinkle_wavelength_m = analysis::wrinkle_wavelength_m(run.lattice, run.frames, half);
   if (tracking && !run.coarse_rows.empty()) {
