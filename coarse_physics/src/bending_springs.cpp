@@ -2,11 +2,11 @@
 
 namespace flagsim::physics {
 
-BendingSprings::BendingSprings(const ClothModel& model, double rigidity_n_m)
+BendingSprings::BendingSprings(const ClothModel& model, double rigidity_j)
     : lattice_(model.lattice) {
   const double dx = lattice_.spacing_x_m, dy = lattice_.spacing_y_m;
-  k_row_ = rigidity_n_m * dy / (dx * dx * dx);
-  k_col_ = rigidity_n_m * dx / (dy * dy * dy);
+  k_row_ = rigidity_j * dy / (dx * dx * dx);
+  k_col_ = rigidity_j * dx / (dy * dy * dy);
 }
 
 // Calls visit(a, b, c, k_b) for every row and column triple.

@@ -19,7 +19,7 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
   std::vector<std::unique_ptr<ForceTerm>> terms;
   if (selection.stretch) terms.push_back(std::make_unique<StretchSprings>(model));
   if (scene.bending)
-    terms.push_back(std::make_unique<BendingSprings>(model, scene.bending->stiffness_n_m));
+    terms.push_back(std::make_unique<BendingSprings>(model, scene.bending->rigidity_j));
   if (scene.gravity && selection.gravity)
     terms.push_back(
         std::make_unique<GravityForce>(model.mass_kg, scene.gravity->acceleration_m_s2));

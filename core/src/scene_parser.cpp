@@ -314,7 +314,7 @@ void read_infill_tables(TableReader& root, Scene& scene) {
     Wrinkles w;
     w.fiber_radius_m = in.real("fiber_radius", 1.0e-3, Bound{0.0, 0.01, true}, "m");
     w.fiber_modulus_pa = in.real("fiber_modulus", 1.0e9, Bound{0.0, 1.0e12, true}, "Pa");
-    w.k_prime = in.optional_real("k_prime", Bound::between(0.0, 1.0e6), "");
+    w.k_prime = in.optional_real("k_prime", Bound::between(0.0, 1.0e6), "N/m");
     w.tolerance = in.optional_real("tolerance", Bound::non_negative(), "(relative)");
     if (auto rounds = in.optional_integer("rounds", 0, 1000)) w.rounds = int(*rounds);
     in.finish(kAllKeys);

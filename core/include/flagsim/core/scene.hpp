@@ -70,7 +70,7 @@ struct Wind {
 
 /// [bending]: bending rigidity of the cloth in the coarse physics.
 struct Bending {
-  double stiffness_n_m = 0.0;  ///< D, N m (moment per unit width per unit curvature)
+  double rigidity_j = 0.0;  ///< D, N m = J (moment per unit width per unit curvature)
 };
 
 /// [wrinkles]: the paper's step 3.5 (eqs. (1)-(13)).

@@ -6,7 +6,8 @@
 // angle in rad) and E_row (eq. (11)).
 //
 // Interpretation of eq. (13): e = k' (c - L)^2 with k' = k_prime * h, h the rest
-// spacing and k_prime in N/m^2 per m (J/m^3): with F ~ k r^4 h curvature^2 per
+// spacing and k_prime in N/m (e is an E, N m^2: k_prime h (c - L)^2 is N/m x m x
+// m^2; the balance below says the same, 1/m^2 = N/m x m / N m^2): with F ~ k r^4 h curvature^2 per
 // node, E_row ~ k r^4 h * integral(curvature^2), and the balance E = e then
 // reads (m pi / c)^2 = k_prime dL / (2 k r^4), the same at any resolution
 // (../shared/paper/README.md derives it for a wave of m half-waves, chord c,
@@ -41,7 +42,7 @@ namespace flagsim::infill {
 
 struct WrinkleParams {
   double k_r4 = 0.0;       ///< k r^4 of eqs. (1), (10): 1/2 E_f (pi/4) r^4, N m^2
-  double k_prime = 1.0;    ///< k_prime of eq. (13) per unit length, J/m^3 (see above)
+  double k_prime = 1.0;    ///< k_prime of eq. (13) per unit length, N/m (see above)
   double tolerance = 0.0;  ///< relative |E - e| / max(E, e) below which a fiber is left alone
 };
 
