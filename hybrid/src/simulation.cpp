@@ -67,8 +67,10 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
 }
 
 // The dense lattice filled by the paper's infill from coarse nodes: shared by
-// the infill and hybrid modes. Velocities are the frame-to-frame differences,
-// for the divergence checks.
+// the infill and hybrid modes. Velocities are the frame-to-frame differences
+// (for the divergence checks and /frames/velocity), and the kinetic energy is
+// the dense nodes' with them: /stats/kinetic_energy means the same in every
+// mode, the energy of the lattice the file holds.
 class DenseInfill {
  public:
   DenseInfill(const Scene& scene, int coarse_rows, int coarse_cols)
@@ -78,7 +80,8 @@ class DenseInfill {
             {infill_solver_of(scene), paper_relax_sweeps_of(scene), wrinkle_params(scene),
              scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
         fps_(scene.fps),
-        wrinkles_(scene.wrinkles.has_value()) {
+        wrinkles_(scene.wrinkles.has_value()),
+        mass_kg_(physics::make_cloth_model(scene).mass_kg) {
     positions_ = lattice_.rest_positions();
     if (scene.flag.initial_perturbation_m > 0.0) {
       const auto z =
@@ -113,12 +116,20 @@ class DenseInfill {
   void forget_velocities() { std::fill(velocities_.begin(), velocities_.end(), Vec3::Zero()); }
   std::span<const Vec3> positions() const { return positions_; }
   std::span<const Vec3> velocities() const { return velocities_; }
+  /// 1/2 sum m |v|^2 over the dense nodes, J.
+  double kinetic_energy_j() const {
+    double total = 0.0;
+    for (std::size_t i = 0; i < velocities_.size(); ++i)
+      total += 0.5 * mass_kg_[i] * velocities_[i].squaredNorm();
+    return total;
+  }
 
  private:
   Lattice lattice_;
   std::unique_ptr<infill::InfillMethod> solver_;
   double fps_;
   bool wrinkles_;
+  std::vector<double> mass_kg_;  ///< [J*K] the fine cloth's node masses, kg
   std::vector<Vec3> positions_, previous_, velocities_;
 };
 
@@ -126,8 +137,7 @@ class DenseInfill {
 // lattice comes from the paper's infill (Figs. 9-10).
 class InfillSimulation final : public Simulation {
  public:
-  explicit InfillSimulation(const Scene& scene)
-      : scene_(scene), dense_(scene, 2, 2), mass_kg_(physics::make_cloth_model(scene).mass_kg) {
+  explicit InfillSimulation(const Scene& scene) : scene_(scene), dense_(scene, 2, 2) {
     dense_.hold_corners();  // the keyframes give them exactly
     fill(0.0, nullptr);     // frame 0: the corners of the first keyframe
     dense_.forget_velocities();
@@ -146,12 +156,7 @@ class InfillSimulation final : public Simulation {
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
-  double kinetic_energy_j() const override {
-    double total = 0.0;
-    const auto v = dense_.velocities();
-    for (std::size_t i = 0; i < v.size(); ++i) total += 0.5 * mass_kg_[i] * v[i].squaredNorm();
-    return total;
-  }
+  double kinetic_energy_j() const override { return dense_.kinetic_energy_j(); }
   std::optional<infill::FillReport> infill_report() const override {
     return dense_.solver().last_report();
   }
@@ -168,7 +173,6 @@ class InfillSimulation final : public Simulation {
 
   const Scene& scene_;
   DenseInfill dense_;
-  std::vector<double> mass_kg_;
   int frame_ = 0;
 };
 
@@ -225,7 +229,7 @@ class HybridSimulation final : public Simulation {
     for (int k = 0; k < grid.coarse_cols; ++k) indices.second.push_back(k * grid.col_stride);
     return indices;
   }
-  double kinetic_energy_j() const override { return physics_->kinetic_energy(); }
+  double kinetic_energy_j() const override { return dense_.kinetic_energy_j(); }
   std::optional<infill::FillReport> infill_report() const override {
     return dense_.solver().last_report();
   }

@@ -103,6 +103,15 @@ with tempfile.TemporaryDirectory() as tmp:
         check(np.all(v[0] == 0), "frame 0 at rest")
         check(np.allclose(v[1:], np.diff(x, axis=0) * 30.0, atol=1e-4),
               f"velocity is the frame difference x fps: {np.abs(v[1:] - np.diff(x, axis=0) * 30).max()}")
+        # The kinetic energy is the dense lattice's, from those velocities (one meaning in every
+        # mode): lumped masses, areal density x cell area, halved on edges, quartered at corners.
+        share = np.ones((J, K))
+        share[[0, -1], :] *= 0.5
+        share[:, [0, -1]] *= 0.5
+        mass = 0.2 * sx * sy * share
+        energy = 0.5 * (mass[None] * (v.astype(np.float64) ** 2).sum(axis=-1)).sum(axis=(1, 2))
+        check(np.allclose(f["stats/kinetic_energy"][...], energy, rtol=1e-5, atol=1e-12),
+              f"kinetic energy: {f['stats/kinetic_energy'][...]} vs {energy}")
         # One view of every frame of every field, for the XDMF sidecar, that reads as its frame.
         for field in ("positions", "velocity", "strain"):
             check(len(f["xdmf/" + field]) == T, f"xdmf views of {field}")
