@@ -132,6 +132,27 @@ TEST(Hybrid, TakesInfillAndWrinkleSettings) {
   EXPECT_EQ(stages[stages.size() - 3], "infill_3.5");
 }
 
+// The paper solver's cap takes effect: 2 passes a frame, and with them it does
+// not converge (33 x 49 from 9 x 13 needs 14-263 measured); the default cap converges.
+TEST(Hybrid, TheRelaxationCapIsThePassesAFrameMakes) {
+  TempDir dir;
+  const std::vector<std::string> base = {"run", "--set", "flag.fine=[33,49]", "--frames", "6",
+                                         "--set", "infill.solver=\"paper\"", "--quiet"};
+  std::vector<std::string> capped = base, free = base;
+  capped.insert(capped.end(), {"--set", "infill.relax_iterations=2", "-o", "capped.h5"});
+  free.insert(free.end(), {"-o", "free.h5"});
+  ASSERT_EQ(run_flag_sim(capped, dir.path()).exit_code, 0);
+  ASSERT_EQ(run_flag_sim(free, dir.path()).exit_code, 0);
+  const data::OutputReader two(dir.file("capped.h5")), plenty(dir.file("free.h5"));
+  const std::vector<double> passes = two.stat("infill_iterations");
+  for (std::size_t t = 1; t < passes.size(); ++t) {
+    EXPECT_EQ(passes[t], 2.0) << t;
+    EXPECT_EQ(two.stat("infill_converged")[t], 0.0) << t;
+    EXPECT_EQ(plenty.stat("infill_converged")[t], 1.0) << t;
+    EXPECT_GT(plenty.stat("infill_iterations")[t], 2.0) << t;
+  }
+}
+
 TEST(Hybrid, OnlyTheStagesTheSceneCallsFor) {
   // No [wind], no [wrinkles]: no wind stage, no step 3.5, with either backend.
   TempDir dir;

@@ -22,7 +22,6 @@ TEST(BendingSprings, EnergyMatchesContinuumAtAnyResolution) {
   // bend, columns stay straight): continuum energy 1/2 D kappa^2 w h.
   const double rigidity = 0.02, kappa = 1.0;
   for (int cols : {21, 81}) {
-    test::small_cloth(9, cols);
     const ClothModel model = make_cloth_model(test::small_cloth(9, cols));
     const BendingSprings bending(model, rigidity);
     std::vector<Vec3> x = model.lattice.rest_positions();

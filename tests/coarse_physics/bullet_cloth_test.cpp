@@ -54,12 +54,15 @@ double settled_sag(const Scene& scene) {
   return sag;
 }
 
+// The README's figures: measured 1.58% apart pinned along the top (9.47 vs
+// 9.32 mm) and 0.24% by the corners (53.89 vs 53.76 mm), each held to a
+// little more than that.
 TEST(BulletCloth, HangsWithTheSameSagAsTheSpringDamper) {
-  for (PinSet pin : {PinSet::kTop, PinSet::kCorners}) {
+  for (const auto& [pin, tolerance] : {std::pair{PinSet::kTop, 0.02}, {PinSet::kCorners, 0.004}}) {
     const double spring = settled_sag(hanging_cloth("spring-damper", pin));
     const double bullet = settled_sag(hanging_cloth("bullet", pin));
     EXPECT_GT(spring, 0.005) << to_string(pin);  // the elastic stretch is what is compared
-    EXPECT_NEAR(bullet, spring, 0.05 * spring) << to_string(pin);
+    EXPECT_NEAR(bullet, spring, tolerance * spring) << to_string(pin);
     std::printf("%s: spring-damper sag %.5f m, bullet %.5f m\n", to_string(pin), spring, bullet);
   }
 }
