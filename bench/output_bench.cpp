@@ -34,7 +34,7 @@ void BM_WriteFrame(benchmark::State& bench) {
       writer.write_frame(frame / 30.0, {x, v, strain}, {0.01, 0.001, stage_seconds, 0.01, 1.0, {}});
       ++frame;
     }
-    writer.finish("complete");
+    writer.finish({flagsim::RunState::kComplete, "all frames written"});
   }
   bench.SetBytesProcessed(std::int64_t(bench.iterations()) * std::int64_t(x.size() * 28));
   std::filesystem::remove(path);

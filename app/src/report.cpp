@@ -73,7 +73,7 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
       analysis::strain_distribution(run.lattice, run.frames);
   row.max_strain = strain.max;
   row.p99_strain = strain.p99;
-  row.status = run.status;
+  row.status = std::string(to_string(run.status.state));
   const int horizon = std::max(1, int(std::lround(window.horizon_s * scene.fps)));
   const int half = int(std::min(run.frames.size(), reference.frames.size()) / 2);
   row.short_horizon_rms_m = analysis::short_horizon_rms(run.frames, reference.frames, horizon);

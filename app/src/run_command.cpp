@@ -136,15 +136,15 @@ int run_command(const RunOptions& options) {
   std::vector<float> node_strain(scene.output.has_field("strain") ? lattice.node_count() : 0);
   double max_strain_seen = 0.0, total_wall_s = 0.0;
   auto since_write = std::chrono::steady_clock::now();
-  std::string status = "complete", reason;
+  RunStatus status;  // complete unless a frame says otherwise
   bool out_of_room = false;
   for (int frame = 0; frame < frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     if (frame > 0) simulation->advance_frame(&times);
     if (frame > 0 && InterruptGuard::requested()) {  // the frame was cut short: not written
-      status = "interrupted";
-      reason = fmt::format("signal received during frame {} (t = {:.4g} s), which is not written",
-                           frame, frame / scene.fps);
+      status = {RunState::kInterrupted,
+                fmt::format("signal received during frame {} (t = {:.4g} s), which is not written",
+                            frame, frame / scene.fps)};
       break;
     }
     const std::span<const Vec3> positions = simulation->positions();
@@ -153,17 +153,17 @@ int run_command(const RunOptions& options) {
       ScopedStageTimer timer(times, checks_stage);
       strain = link_strain(lattice, positions, node_strain);  // node_strain empty: not asked for
       if (auto why = hybrid::frame_divergence(*simulation, scene, strain)) {
-        status = "diverged";
-        reason = fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
+        status = {RunState::kDiverged,
+                  fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why)};
       }
     }
-    if (status == "diverged") break;
+    if (status.diverged()) break;
     max_strain_seen = std::max(max_strain_seen, strain.max);
     if (frame % scene.output.every == 0) {
       if (auto full = writer.out_of_room()) {  // stop while the file is whole
-        status = "interrupted";
-        reason = fmt::format("stopped before frame {} (t = {:.4g} s): {}", frame, frame / scene.fps,
-                             *full);
+        status = {RunState::kInterrupted,
+                  fmt::format("stopped before frame {} (t = {:.4g} s): {}", frame,
+                              frame / scene.fps, *full)};
         out_of_room = true;
         break;
       }
@@ -191,37 +191,37 @@ int run_command(const RunOptions& options) {
     total_wall_s += seconds_since(frame_start);
     progress.update(frame, frame / scene.fps, 1000.0 * total_wall_s / (frame + 1));
     if (InterruptGuard::requested() && frame + 1 < frames) {
-      status = "interrupted";
-      reason =
-          fmt::format("signal received after frame {} (t = {:.4g} s)", frame, frame / scene.fps);
+      status = {RunState::kInterrupted, fmt::format("signal received after frame {} (t = {:.4g} s)",
+                                                   frame, frame / scene.fps)};
       break;
     }
   }
   progress.done();
-  if (status == "complete")  // every file says why it ended, a complete one too
-    reason = fmt::format("all {} frames simulated (t = 0 .. {:.4g} s), {} written", frames,
-                         (frames - 1) / scene.fps, writer.frames_written());
-  writer.finish(status, reason);
+  if (status.complete())  // every file says why it ended, a complete one too
+    status.reason = fmt::format("all {} frames simulated (t = 0 .. {:.4g} s), {} written", frames,
+                                (frames - 1) / scene.fps, writer.frames_written());
+  writer.finish(status);
 
   const double ms_per_frame = 1000.0 * total_wall_s / std::max(1, writer.frames_written());
   // Rendered from the file, as `flag-sim render` would: the camera frames the
   // whole run, and the renderer never reaches into the simulation.
   std::string rendered;
-  if (render_plan && status != "interrupted" && writer.frames_written() > 0)
+  if (render_plan && !status.interrupted() && writer.frames_written() > 0)
     rendered = render_file(writer.path(), *render_plan);
   if (out_of_room) {
-    fmt::print(stderr, "error: {}: {}; the {} frames written are kept\n", writer.path(), reason,
-               writer.frames_written());
+    fmt::print(stderr, "error: {}: {}; the {} frames written are kept\n", writer.path(),
+               status.reason, writer.frames_written());
     return int(ExitCode::kIoFailure);
   }
-  if (status == "diverged") {
-    fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n", reason,
-               writer.frames_written(), writer.path());
+  if (status.diverged()) {
+    fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n",
+               status.reason, writer.frames_written(), writer.path());
     if (!rendered.empty()) fmt::print("{}\n", rendered);
-    return int(ExitCode::kDiverged);
+    return int(status.exit_code());
   }
   fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
-             status, writer.frames_written(), lattice.rows, lattice.cols, to_string(scene.mode),
+             to_string(status.state), writer.frames_written(), lattice.rows, lattice.cols,
+             to_string(scene.mode),
              ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
   for (const std::string& note : scene.notes) fmt::print("{}\n", note);
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
@@ -231,7 +231,7 @@ int run_command(const RunOptions& options) {
         "beyond it; /stats/infill_converged)\n",
         unconverged_frames, writer.frames_written(), 100.0 * worst_residual);
   if (!rendered.empty()) fmt::print("{}\n", rendered);
-  return status == "interrupted" ? int(ExitCode::kInterrupted) : int(ExitCode::kSuccess);
+  return int(status.exit_code());
 }
 
 }  // namespace flagsim::app

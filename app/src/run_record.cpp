@@ -60,9 +60,8 @@ void average_times(RunRecord& record) {
 bool frame_is_good(RunRecord& record, const Scene& scene, const std::optional<std::string>& why,
                    int frame) {
   if (!why) return true;
-  record.status = "diverged";
-  record.status_reason =
-      fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why);
+  record.status = {RunState::kDiverged,
+                   fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why)};
   return false;
 }
 
@@ -145,7 +144,7 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress*
 
 namespace {
 
-constexpr char kRecordMagic[16] = "flag-sim-rec-01";  // with its NUL: 16 bytes
+constexpr char kRecordMagic[16] = "flag-sim-rec-02";  // with its NUL: 16 bytes
 
 // Plain little-endian bytes of the host (x86-64, as the rest of flag-sim's binary I/O).
 class RecordOut {
@@ -247,8 +246,8 @@ void save_record(const RunRecord& record, const std::string& path) {
   out.put(record.ms_per_frame);
   out.put(record.physics_ms);
   out.put(record.infill_ms);
-  out.put_string(record.status);
-  out.put_string(record.status_reason);
+  out.put<std::int32_t>(std::int32_t(record.status.state));
+  out.put_string(record.status.reason);
   out.put_ints(record.coarse_rows);
   out.put_ints(record.coarse_cols);
   out.put_frames(record.frames);
@@ -282,8 +281,11 @@ RunRecord load_record(const std::string& path) {
   record.ms_per_frame = in.get<double>();
   record.physics_ms = in.get<double>();
   record.infill_ms = in.get<double>();
-  record.status = in.get_string();
-  record.status_reason = in.get_string();
+  const auto state = in.get<std::int32_t>();
+  if (state < int(RunState::kRunning) || state > int(RunState::kInterrupted))
+    throw UserError(fmt::format("{}: not a whole flag-sim run record", path));
+  record.status.state = RunState(state);
+  record.status.reason = in.get_string();
   record.coarse_rows = in.get_ints();
   record.coarse_cols = in.get_ints();
   record.frames = in.get_frames();

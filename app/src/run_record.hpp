@@ -7,6 +7,7 @@
 
 #include "flagsim/analysis/metrics.hpp"
 #include "flagsim/core/lattice.hpp"
+#include "flagsim/core/run_status.hpp"
 #include "flagsim/core/scene.hpp"
 
 namespace flagsim::app {
@@ -21,8 +22,8 @@ struct RunRecord {
   double ms_per_frame = 0.0;        ///< every stage, mean over frames 1..T-1
   double physics_ms = 0.0;          ///< the physics' stages (force terms, integrate, bullet_step)
   double infill_ms = 0.0;           ///< coarse_slack and infill_3.x
-  std::string status = "complete";  ///< or "diverged" (frames up to the last good one)
-  std::string status_reason;
+  /// complete, or diverged (frames up to the last good one) with its reason
+  RunStatus status;
 };
 
 class Progress;

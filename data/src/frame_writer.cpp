@@ -137,7 +137,8 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
 
   const hid_t root = impl_->file.get();
   bool ok = h5::write_string_attribute(root, "format", kFormat) &&
-            h5::write_string_attribute(root, "status", "running") &&
+            h5::write_string_attribute(root, "status",
+                                       std::string(to_string(RunState::kRunning))) &&
             h5::write_string_attribute(root, "mode", info.mode) &&
             h5::write_string_attribute(root, "effects",
                                        fmt::format("{}", fmt::join(info.effects, ","))) &&
@@ -324,10 +325,11 @@ std::optional<std::string> FrameWriter::out_of_room() const {
       double(room) / 1e6, double(need) / 1e6);
 }
 
-void FrameWriter::finish(const std::string& status, const std::string& reason) {
+void FrameWriter::finish(const RunStatus& status) {
   const hid_t root = impl_->file.get();
-  bool ok = h5::write_string_attribute(root, "status", status);
-  if (!reason.empty()) ok = ok && h5::write_string_attribute(root, "status_reason", reason);
+  bool ok = h5::write_string_attribute(root, "status", std::string(to_string(status.state)));
+  if (!status.reason.empty())
+    ok = ok && h5::write_string_attribute(root, "status_reason", status.reason);
   ok = ok && write_xdmf_views(root, lattice_, impl_->times.size(), impl_->fields) &&
        H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
   const std::vector<double> times = std::move(impl_->times);

@@ -49,7 +49,7 @@ TEST(FrameWriter, RoundTripThroughTheCApi) {
       writer.write_frame(t / 30.0, {x, v, strain},
                          FrameStats{0.01 * t, 0.001 * t, stages, 1.0, 2.0, {}});
     }
-    writer.finish("complete");
+    writer.finish({RunState::kComplete, "all frames written"});
   }
   EXPECT_FALSE(fs::exists(path + ".partial"));
   ASSERT_TRUE(fs::exists(path));
@@ -133,7 +133,7 @@ TEST(FrameWriter, FieldsTheRunDidNotAskForAreNotWritten) {
     const std::vector<Vec3> x = lattice.rest_positions();
     const double stages[3] = {0.0, 0.0, 0.0};
     writer.write_frame(0.0, {x, {}, {}}, FrameStats{0, 0, stages, 0, 0, {}});
-    writer.finish("complete");
+    writer.finish({RunState::kComplete, "all frames written"});
   }
   const OutputReader reader(path);
   EXPECT_EQ(reader.positions(0).size(), lattice.node_count());

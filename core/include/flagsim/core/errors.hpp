@@ -3,7 +3,7 @@
 //  - our own bugs: assert;
 //  - the user's mistake (scene, flags, files): throw UserError, which the app
 //    prints as one `error:` line and turns into exit code 2;
-//  - numerical trouble: a RunStatus (diverged), never an exception.
+//  - numerical trouble: a RunStatus (run_status.hpp: diverged), never an exception.
 #include <stdexcept>
 #include <string>
 

@@ -16,6 +16,7 @@
 
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/named_number.hpp"
+#include "flagsim/core/run_status.hpp"
 
 namespace flagsim::data {
 
@@ -88,11 +89,10 @@ class FrameWriter {
   /// column of this frame. Throws IoError on failure, std::invalid_argument
   /// when a field's size does not match the lattice (or the coarse layout).
   void write_frame(double time_s, const FrameFields& fields, const FrameStats& stats);
-  /// Sets the status ("complete", "diverged", "interrupted"), adds `reason` as
-  /// root attribute `status_reason` when non-empty, writes the XDMF views,
-  /// flushes, closes, renames the file to its final name and writes the XDMF
-  /// sidecar. Throws IoError.
-  void finish(const std::string& status, const std::string& reason = "");
+  /// Sets the root attributes `status` and (when it has one) `status_reason`,
+  /// writes the XDMF views, flushes, closes, renames the file to its final
+  /// name and writes the XDMF sidecar. Throws IoError.
+  void finish(const RunStatus& status);
 
   /// Says why the next frame should not be written, or nullopt when it may be:
   /// the disk holding the file, or the process's file size limit, has less room
