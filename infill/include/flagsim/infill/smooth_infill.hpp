@@ -109,13 +109,14 @@ class SmoothInfill final : public InfillMethod {
   std::vector<std::uint8_t> held_;
   FiberProjection projection_;
   std::vector<double> coarse_row_stretch_, coarse_col_stretch_;
-  /// Linear interpolation between samples a and b = a + 1 (or a, at one sample), weight t of b.
-  struct Lerp {
-    int a = 0, b = 0;
-    double t = 0.0;
+  /// Cubic (Catmull-Rom) interpolation of samples: four samples and their
+  /// weights (ends repeated), exact for linear data, C1 across the samples.
+  struct Taps {
+    int index[4] = {0, 0, 0, 0};
+    double weight[4] = {1.0, 0.0, 0.0, 0.0};
   };
-  static Lerp lerp_at(double x, int count);
-  std::vector<Lerp> row_link_lerp_, col_node_lerp_;  ///< 3.3's weights along the rows
+  static Taps taps_at(double x, int count);
+  std::vector<Taps> row_link_taps_, col_node_taps_;  ///< 3.3's weights along the rows
   std::vector<double>
       along_;  ///< 3.3: the coarse stretch interpolated along coarse lines, work buffer
 
