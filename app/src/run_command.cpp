@@ -102,8 +102,8 @@ int run_command(const RunOptions& options) {
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
   StageTimes times;
   simulation->register_stages(times);
-  const int checks_stage = times.add("checks");
-  const int output_stage = times.add("output");
+  const int checks_stage = times.add("checks", StageGroup::kRunLoop);
+  const int output_stage = times.add("output", StageGroup::kRunLoop);
 
   data::RunInfo info;
   info.mode = to_string(scene.mode);

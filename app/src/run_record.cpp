@@ -22,16 +22,12 @@ namespace flagsim::app {
 namespace fs = std::filesystem;
 namespace {
 
-bool is_infill_stage(const std::string& name) {
-  return name == "coarse_slack" || name.starts_with("infill_");
-}
-
 // Adds a frame's stage times to the record's sums (frame 0 has none).
 void add_times(RunRecord& record, const StageTimes& times) {
   for (std::size_t s = 0; s < times.names().size(); ++s) {
     const double ms = 1e3 * times.seconds()[s];
     record.ms_per_frame += ms;
-    (is_infill_stage(times.names()[s]) ? record.infill_ms : record.physics_ms) += ms;
+    (times.groups()[s] == StageGroup::kInfill ? record.infill_ms : record.physics_ms) += ms;
   }
 }
 

@@ -211,7 +211,7 @@ class HybridSimulation final : public Simulation {
   }
   void register_stages(StageTimes& times) override {
     physics_->register_stages(times);
-    if (needs_slack()) slack_stage_ = times.add("coarse_slack");
+    if (needs_slack()) slack_stage_ = times.add("coarse_slack", StageGroup::kInfill);
     dense_.register_stages(times);
   }
   void advance_frame(StageTimes* times) override {

@@ -71,11 +71,11 @@ void InfillSolver::hold(std::span<const std::uint8_t> nodes) {
 }
 
 void InfillSolver::register_stages(StageTimes& times) {
-  stage_[0] = times.add("infill_3.1");
-  stage_[1] = times.add("infill_3.2");
-  stage_[2] = times.add("infill_3.3");
-  stage_[3] = times.add("infill_3.4");
-  if (wrinkles_) stage_[4] = times.add("infill_3.5");
+  stages_.boundary = times.add("infill_3.1", StageGroup::kInfill);
+  stages_.initial_move = times.add("infill_3.2", StageGroup::kInfill);
+  stages_.length = times.add("infill_3.3", StageGroup::kInfill);
+  stages_.relax = times.add("infill_3.4", StageGroup::kInfill);
+  if (wrinkles_) stages_.wrinkles = times.add("infill_3.5", StageGroup::kInfill);
 }
 
 std::size_t InfillSolver::cell_corner_of(std::size_t node) const {
@@ -143,14 +143,14 @@ void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
 
 void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m,
                           StageTimes* times) {
-  auto timed = [&](int step, auto&& work) { run_timed(times, stage_[step], work); };
+  auto timed = [&](int stage, auto&& work) { run_timed(times, stage, work); };
   auto relax = [&] {  // 3.4
     const int sweeps = relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
     last_sweeps_ += sweeps;
     capped_ = capped_ || sweeps >= relax_sweeps_;
   };
   std::copy(positions_m.begin(), positions_m.end(), previous_.begin());
-  timed(0, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
+  timed(stages_.boundary, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
     for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
       positions_m[coarse_dense_[c]] = coarse_target_m[c];
     for (const Edge& edge : edges_) {
@@ -165,18 +165,18 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
         relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
     }
   });
-  timed(1, [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2
-  timed(2, [&] {  // 3.3: rows, then columns
+  timed(stages_.initial_move, [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2
+  timed(stages_.length, [&] {  // 3.3: rows, then columns
     for (const Fiber& row : cell_rows_)
       length_search(row, positions_m, previous_, kLengthTolerance);
     for (const Fiber& col : cell_cols_)
       length_search(col, positions_m, previous_, kLengthTolerance);
   });
-  timed(3, relax);
+  timed(stages_.relax, relax);
   if (!wrinkles_) return;  // no [wrinkles]: 3.5 is not scheduled at all
   for (int round = 0; round < rounds_; ++round) {
-    timed(4, [&] { rewrinkle(positions_m); });
-    timed(3, relax);
+    timed(stages_.wrinkles, [&] { rewrinkle(positions_m); });
+    timed(stages_.relax, relax);
   }
 }
 

@@ -115,10 +115,10 @@ void SmoothInfill::hold(std::span<const std::uint8_t> nodes) {
 }
 
 void SmoothInfill::register_stages(StageTimes& times) {
-  stage_[0] = times.add("infill_3.1");  // with 3.2: one evaluation of the surface
-  stage_[1] = times.add("infill_3.3");
-  stage_[2] = times.add("infill_3.4");
-  if (wrinkles_) stage_[3] = times.add("infill_3.5");
+  stages_.surface = times.add("infill_3.1", StageGroup::kInfill);  // with 3.2: one evaluation
+  stages_.bands = times.add("infill_3.3", StageGroup::kInfill);
+  stages_.projection = times.add("infill_3.4", StageGroup::kInfill);
+  if (wrinkles_) stages_.wrinkles = times.add("infill_3.5", StageGroup::kInfill);
 }
 
 void SmoothInfill::add_wrinkles(std::span<Vec3> positions_m) {
@@ -253,22 +253,22 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
                         StageTimes* times) {
   assert(coarse_m.size() == grid_.coarse_count() && positions_m.size() == lattice_.node_count());
   if (coarser_)  // part of 3.4: the coarser levels' projections start this one's
-    run_timed(times, stage_[2], [&] { coarser_->fill(coarse_m, coarser_positions_, nullptr); });
-  run_timed(times, stage_[0], [&] {  // 3.1-3.2: the surface, kept for the level above and 3.5
+    run_timed(times, stages_.projection, [&] { coarser_->fill(coarse_m, coarser_positions_, nullptr); });
+  run_timed(times, stages_.surface, [&] {  // 3.1-3.2: the surface, kept for the level above and 3.5
     spline_.evaluate(coarse_m, surface_);
     std::copy(surface_.begin(), surface_.end(), positions_m.begin());
     if (coarser_) add_coarser_offsets(positions_m);
   });
-  run_timed(times, stage_[1], [&] { set_bands(coarse_m); });  // 3.3
+  run_timed(times, stages_.bands, [&] { set_bands(coarse_m); });  // 3.3
   ProjectionReport projected;
   const auto relax = [&] {  // 3.4
     projected = projection_.project(positions_m, kProjectionTolerance, kMaxProjectionRounds,
                                     kStepsPerFiber);
   };
-  run_timed(times, stage_[2], relax);
+  run_timed(times, stages_.projection, relax);
   if (wrinkles_) {
-    run_timed(times, stage_[3], [&] { add_wrinkles(positions_m); });
-    run_timed(times, stage_[2], relax);
+    run_timed(times, stages_.wrinkles, [&] { add_wrinkles(positions_m); });
+    run_timed(times, stages_.projection, relax);
     for (std::size_t i = 0; i < positions_m.size(); ++i)
       last_offset_[i] = (positions_m[i] - surface_[i]).dot(normals_[i]);
   }

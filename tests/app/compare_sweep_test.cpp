@@ -68,6 +68,16 @@ TEST(Compare, WritesTheContractColumnsForEachRun) {
   EXPECT_GT(std::stod(csv[2][track]), 0.0);
   EXPECT_EQ(csv[2][column(csv, "fine")], "17x25");
   EXPECT_EQ(csv[2][column(csv, "coarse")], "9x13");
+  // The cost split by what each stage is for (StageGroup): the reference has
+  // no infill, the hybrid's frame is its physics plus its infill.
+  const auto number = [&](std::size_t row, const char* name) {
+    return std::stod(csv[row][column(csv, name)]);
+  };
+  EXPECT_EQ(number(1, "infill_ms"), 0.0);
+  EXPECT_GT(number(2, "infill_ms"), 0.0);
+  EXPECT_GT(number(2, "physics_ms"), 0.0);
+  EXPECT_NEAR(number(2, "physics_ms") + number(2, "infill_ms"), number(2, "ms_per_frame"),
+              1e-4 * number(2, "ms_per_frame") + 1e-5);
 }
 
 // The flapping is measured at the fly end, whichever edge is pinned: a flag

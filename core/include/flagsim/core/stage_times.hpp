@@ -8,14 +8,20 @@
 
 namespace flagsim {
 
+/// What a stage's time is spent on, for the summaries that split a frame's
+/// cost (compare's physics_ms and infill_ms columns).
+enum class StageGroup { kPhysics, kInfill, kRunLoop };
+
 class StageTimes {
  public:
   /// Registers a stage; returns its column. Stages are listed in pipeline order.
-  int add(std::string name) {
+  int add(std::string name, StageGroup group = StageGroup::kPhysics) {
     names_.push_back(std::move(name));
+    groups_.push_back(group);
     seconds_.push_back(0.0);
     return int(names_.size()) - 1;
   }
+  const std::vector<StageGroup>& groups() const { return groups_; }
   void add_seconds(int stage, double seconds) { seconds_[stage] += seconds; }
   const std::vector<std::string>& names() const { return names_; }
   /// Seconds per stage since the last reset.
@@ -24,6 +30,7 @@ class StageTimes {
 
  private:
   std::vector<std::string> names_;
+  std::vector<StageGroup> groups_;
   std::vector<double> seconds_;
 };
 

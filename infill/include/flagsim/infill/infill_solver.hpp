@@ -111,7 +111,10 @@ class InfillSolver final : public InfillMethod {
   std::vector<std::size_t> coarse_dense_;  ///< dense index of each coarse node
   std::vector<Vec3> previous_;             ///< the lattice before the current deformation step
   std::vector<Vec3> coarse_start_, coarse_step_;
-  int stage_[5] = {-1, -1, -1, -1, -1};
+  /// Columns of the frame's StageTimes, one per step (-1: not timed).
+  struct Stages {
+    int boundary = -1, initial_move = -1, length = -1, relax = -1, wrinkles = -1;
+  } stages_;
   int last_steps_ = 0, last_sweeps_ = 0;
   bool capped_ = false;  ///< some 3.4 call of the last fill() ran to its cap
   FillReport report_;

@@ -120,7 +120,11 @@ class SmoothInfill final : public InfillMethod {
   std::vector<double>
       along_;  ///< 3.3: the coarse stretch interpolated along coarse lines, work buffer
 
-  int stage_[4] = {-1, -1, -1, -1};
+  /// Columns of the frame's StageTimes (-1: not timed): 3.1-3.2, 3.3, 3.4 (with
+  /// the coarser levels' projections), 3.5.
+  struct Stages {
+    int surface = -1, bands = -1, projection = -1, wrinkles = -1;
+  } stages_;
   std::optional<WrinkleParams> wrinkles_;
   std::vector<Vec3> surface_;  ///< this frame's mean surface (3.1), read by 3.5 and the level above
   std::vector<Vec3> normals_;  ///< 3.5: the surface's normals
