@@ -70,6 +70,7 @@ RunRecord record_run(const Scene& scene, Progress* progress) {
   RunRecord record;
   record.lattice = simulation->lattice();
   record.fps = scene.fps;
+  record.scene_toml = scene.toml_text;
   std::tie(record.coarse_rows, record.coarse_cols) = simulation->coarse_indices();
   for (const NamedNumber& number : simulation->numbers())
     if (number.name == "substeps_per_frame") record.substeps_per_frame = int(number.value);
@@ -140,7 +141,7 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress*
 
 namespace {
 
-constexpr char kRecordMagic[16] = "flag-sim-rec-02";  // with its NUL: 16 bytes
+constexpr char kRecordMagic[16] = "flag-sim-rec-03";  // with its NUL: 16 bytes
 
 // Plain little-endian bytes of the host (x86-64, as the rest of flag-sim's binary I/O).
 class RecordOut {
@@ -244,6 +245,7 @@ void save_record(const RunRecord& record, const std::string& path) {
   out.put(record.infill_ms);
   out.put<std::int32_t>(std::int32_t(record.status.state));
   out.put_string(record.status.reason);
+  out.put_string(record.scene_toml);
   out.put_ints(record.coarse_rows);
   out.put_ints(record.coarse_cols);
   out.put_frames(record.frames);
@@ -282,6 +284,7 @@ RunRecord load_record(const std::string& path) {
     throw UserError(fmt::format("{}: not a whole flag-sim run record", path));
   record.status.state = RunState(state);
   record.status.reason = in.get_string();
+  record.scene_toml = in.get_string();
   record.coarse_rows = in.get_ints();
   record.coarse_cols = in.get_ints();
   record.frames = in.get_frames();

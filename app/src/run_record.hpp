@@ -24,6 +24,7 @@ struct RunRecord {
   double infill_ms = 0.0;           ///< coarse_slack and infill_3.x
   /// complete, or diverged (frames up to the last good one) with its reason
   RunStatus status;
+  std::string scene_toml;  ///< the scene as run (Scene::toml_text): what a saved record is of
 };
 
 class Progress;

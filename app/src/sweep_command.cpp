@@ -147,8 +147,17 @@ int point_of_line(const std::string& line) {
 RunRecord reference_run(const SweepOptions& o, const std::vector<SweepPoint>& grid,
                         const std::string& file) {
   std::error_code ec;
-  if (!file.empty() && fs::exists(file, ec)) return load_record(file);
   const Scene reference_scene = scene_of(o, grid[0]);
+  if (!file.empty() && fs::exists(file, ec)) {
+    RunRecord saved = load_record(file);
+    // A record of another sweep's reference would measure every point against the wrong run.
+    if (saved.scene_toml != reference_scene.toml_text)
+      throw UserError(fmt::format(
+          "--reference-file {}: the reference of another scene or sweep (its scene differs from "
+          "this sweep's point 0); remove it or name another file",
+          file));
+    return saved;
+  }
   Progress progress(Progress::wanted(o.quiet), reference_scene.simulated_frames(),
                     "reference (point 0)");
   RunRecord reference = record_run(reference_scene, &progress);

@@ -160,6 +160,14 @@ TEST(Sweep, PointsShareOneSavedReference) {
             0);
   EXPECT_EQ(without_timing(read_csv(dir.file("shared.csv"))),
             without_timing(read_csv(dir.file("alone.csv"))));
+  // A saved reference of another sweep (here: other frames) is refused, not measured against.
+  const ProcessResult other = run_flag_sim(
+      {"sweep", "--coarse", "5x7", "--quiet", "--set", "flag.fine=[17,25]", "--frames", "11", "-o",
+       "o.csv", "--point", "2", "--reference-file", "ref.rec"},
+      dir.path());
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("ref.rec: the reference of another scene or sweep"), std::string::npos)
+      << other.err;
   dir.write("bad.rec", "not a record");
   const ProcessResult bad =
       run_flag_sim(with({"-o", "b.csv", "--point", "2", "--reference-file", "bad.rec"}), dir.path());
