@@ -65,10 +65,9 @@ std::string write_file(FuzzedDataProvider& in) {
   for (const char* group : {"/frames", "/lattice", "/coarse", "/stats"})
     if (in.ConsumeBool())
       h5::Handle(H5Gcreate2(root, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  for (const char* set :
-       {"/frames/positions", "/frames/time", "/frames/velocity", "/frames/strain",
-        "/lattice/rest_positions", "/coarse/positions",
-        "/coarse/rows", "/coarse/cols", "/stats/max_strain", "/stats/stage_seconds"})
+  for (const char* set : {"/frames/positions", "/frames/time", "/frames/velocity", "/frames/strain",
+                          "/lattice/rest_positions", "/coarse/positions", "/coarse/rows",
+                          "/coarse/cols", "/stats/max_strain", "/stats/stage_seconds"})
     add_dataset(in, root, set);
   if (H5Lexists(root, "/stats", H5P_DEFAULT) > 0 &&
       H5Lexists(root, "/stats/stage_seconds", H5P_DEFAULT) > 0) {
@@ -98,9 +97,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     reader.stage_names();
     reader.stage_seconds();
     for (int t : {-1, 0, 1, reader.frame_count() - 1, reader.frame_count()}) {
-      for (auto read : {+[](const flagsim::data::OutputReader& r, int f) { r.positions(f); },
-                        +[](const flagsim::data::OutputReader& r, int f) { r.velocities(f); },
-                        +[](const flagsim::data::OutputReader& r, int f) { r.node_strain(f); }}) {
+      for (auto read : {+[](const flagsim::data::OutputReader&r, int f) { r.positions(f); },
+                        +[](const flagsim::data::OutputReader&r, int f) { r.velocities(f); },
+                        +[](const flagsim::data::OutputReader&r, int f) { r.node_strain(f); }}) {
         try {
           read(reader, t);
         } catch (const flagsim::UserError&) {

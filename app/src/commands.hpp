@@ -65,11 +65,11 @@ struct SweepOptions {
   /// The reference run, shared: read from this file when it is there, else
   /// run and saved there (sweep --jobs uses one in its points' directory).
   std::string reference_file;
-  bool list = false;  ///< print the points and exit
-  bool resume = false;  ///< with --point: nothing to do when -o already holds its row
-  std::string slurm_dir;                 ///< --slurm DIR: write Slurm batch jobs instead of running
-  bool submit = false;                   ///< --submit: and sbatch them
-  std::vector<std::string> slurm_args;   ///< --slurm-arg: extra #SBATCH options
+  bool list = false;      ///< print the points and exit
+  bool resume = false;    ///< with --point: nothing to do when -o already holds its row
+  std::string slurm_dir;  ///< --slurm DIR: write Slurm batch jobs instead of running
+  bool submit = false;    ///< --submit: and sbatch them
+  std::vector<std::string> slurm_args;  ///< --slurm-arg: extra #SBATCH options
   bool quiet = false;
 };
 /// argv: the command line that started this sweep (children re-run it with --point).

@@ -36,8 +36,8 @@ class StagedFiles {
       std::error_code ec;
       fs::rename(partials_[i], finals_[i], ec);
       if (ec)
-        throw IoError(fmt::format("{}: cannot rename to {}: {}", partials_[i], finals_[i],
-                                  ec.message()));
+        throw IoError(
+            fmt::format("{}: cannot rename to {}: {}", partials_[i], finals_[i], ec.message()));
     }
     partials_.clear();
   }
@@ -59,8 +59,8 @@ void write_text(const std::string& path, const std::string& text) {
 
 void check_interrupt(int done, int total, const std::string& output) {
   if (stop_requested())
-    throw Interrupted(fmt::format("export to {} stopped by a signal after {} of {} frames", output,
-                                  done, total));
+    throw Interrupted(
+        fmt::format("export to {} stopped by a signal after {} of {} frames", output, done, total));
 }
 
 }  // namespace
@@ -83,8 +83,9 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
         "-o {}: expected NAME.pc2 (a point cache and NAME.obj), NAME.obj (one frame) or a "
         "directory DIR/ (an OBJ per frame)",
         output));
-  const std::string obj_path =
-      kind == ExportKind::kPointCache ? fs::path(target).replace_extension(".obj").string() : output;
+  const std::string obj_path = kind == ExportKind::kPointCache
+                                   ? fs::path(target).replace_extension(".obj").string()
+                                   : output;
   FileRoles files;
   files.input(h5_path, "the input");
   if (kind == ExportKind::kObjPerFrame) {
@@ -133,8 +134,8 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
       check_interrupt(t - first, count, output);
       write_text((target / fmt::format("frame_{:05d}.obj", t)).string(), obj_of(t));
     }
-    written = fmt::format("{}frame_{:05d}.obj ... frame_{:05d}.obj",
-                          (target / "").string(), first, last - 1);
+    written = fmt::format("{}frame_{:05d}.obj ... frame_{:05d}.obj", (target / "").string(), first,
+                          last - 1);
   } else {
     StagedFiles staged;
     if (kind == ExportKind::kPointCache) {

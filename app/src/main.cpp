@@ -1,18 +1,18 @@
 // The flag-sim command line (contract: "Command line").
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
-#include <toml++/toml.h>
 #include <algorithm>
 #include <string_view>
 
 #include "commands.hpp"
+#include "flagsim/coarse_physics/bullet_cloth.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
 #include "flagsim/core/near_miss.hpp"
 #include "flagsim/core/version.hpp"
-#include "flagsim/coarse_physics/bullet_cloth.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "flagsim/render/offscreen_context.hpp"
 #include "render_command.hpp"
@@ -116,7 +116,8 @@ int main(int argc, char** argv) {
   std::string export_input;
   flagsim::app::ExportOptions export_options;
   CLI::App* export_cmd = cli.add_subcommand(
-      "export", "The dense lattice for Blender and other DCC tools: PC2 point cache + OBJ, or OBJs");
+      "export",
+      "The dense lattice for Blender and other DCC tools: PC2 point cache + OBJ, or OBJs");
   export_cmd->add_option("file", export_input, "flag-sim output (.h5)")->required();
   export_cmd
       ->add_option("-o,--output", export_options.output,
@@ -161,8 +162,9 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--slurm", sweep.slurm_dir,
                         "Write DIR/reference.sbatch, sweep.sbatch (array), merge.sbatch instead");
   sweep_cmd->add_flag("--submit", sweep.submit, "With --slurm: submit the jobs with sbatch");
-  sweep_cmd->add_option("--slurm-arg", sweep.slurm_args,
-                        "An #SBATCH option for every job, e.g. --slurm-arg=--partition=short")
+  sweep_cmd
+      ->add_option("--slurm-arg", sweep.slurm_args,
+                   "An #SBATCH option for every job, e.g. --slurm-arg=--partition=short")
       ->allow_extra_args(false);
   std::vector<std::string> arguments(argv, argv + argc);
 

@@ -18,7 +18,8 @@ int plot_command(const std::string& h5_path, const std::string& output) {
   const fs::path target(output);
   const std::string extension = target.extension().string();
   if (extension != ".png" && extension != ".svg" && extension != ".pdf")
-    throw UserError(fmt::format("-o {}: expected an image name ending in .png, .svg or .pdf", output));
+    throw UserError(
+        fmt::format("-o {}: expected an image name ending in .png, .svg or .pdf", output));
   // Drawn under a temporary name with the same extension (matplotlib picks the
   // format from it), renamed when whole: a failed plot leaves nothing.
   const std::string partial =
@@ -42,7 +43,8 @@ int plot_command(const std::string& h5_path, const std::string& output) {
     run_plot_script(stats_plot_script(), {h5_path, partial}, output);
     std::error_code ec;
     fs::rename(partial, output, ec);
-    if (ec) throw IoError(fmt::format("{}: cannot rename to {}: {}", partial, output, ec.message()));
+    if (ec)
+      throw IoError(fmt::format("{}: cannot rename to {}: {}", partial, output, ec.message()));
   } catch (...) {
     std::error_code ec;
     fs::remove(partial, ec);

@@ -12,10 +12,10 @@ namespace flagsim::app {
 void check_plot_tools(const std::string& what, bool needs_h5py) {
   if (run_quietly({kPython, "-c", needs_h5py ? "import matplotlib, h5py" : "import matplotlib"}) !=
       0)
-    throw UserError(fmt::format("{} needs {} with matplotlib{} (apt-get install "
-                                "python3-matplotlib{})",
-                                what, kPython, needs_h5py ? " and h5py" : "",
-                                needs_h5py ? " python3-h5py" : ""));
+    throw UserError(fmt::format(
+        "{} needs {} with matplotlib{} (apt-get install "
+        "python3-matplotlib{})",
+        what, kPython, needs_h5py ? " and h5py" : "", needs_h5py ? " python3-h5py" : ""));
 }
 
 void run_plot_script(std::string_view script, const std::vector<std::string>& args,

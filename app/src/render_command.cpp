@@ -10,7 +10,6 @@
 #include <regex>
 
 #include "commands.hpp"
-#include "frame_range.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/limits.hpp"
@@ -21,6 +20,7 @@
 #include "flagsim/render/offscreen_context.hpp"
 #include "flagsim/render/png_io.hpp"
 #include "flagsim/render/video_writer.hpp"
+#include "frame_range.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 
@@ -53,8 +53,8 @@ Vec3 parse_point(const std::string& flag, const std::string& text) {
     const std::string item = comma == std::string::npos ? "" : text.substr(start, comma - start);
     if (comma == std::string::npos || !std::regex_match(item, m, number) ||
         (c == 2 && text.find(',', start) != std::string::npos))
-      throw UserError(fmt::format("{} {}: expected X,Y,Z in metres, e.g. 0.75,1.5,4", flag,
-                                  printable(text)));
+      throw UserError(
+          fmt::format("{} {}: expected X,Y,Z in metres, e.g. 0.75,1.5,4", flag, printable(text)));
     p[c] = std::stod(m[1]);
     if (!std::isfinite(p[c]) || std::abs(p[c]) > limits::kCoordinate_m)
       throw UserError(fmt::format("{} {}: each coordinate within {} m", flag, printable(text),
@@ -144,7 +144,8 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
                       printable(*request.camera)));
     plan.view = *view;
   }
-  if (request.frames) std::tie(plan.first_frame, plan.last_frame) = parse_frame_range(*request.frames);
+  if (request.frames)
+    std::tie(plan.first_frame, plan.last_frame) = parse_frame_range(*request.frames);
   if (request.eye) plan.eye_m = parse_point("--eye", *request.eye);
   if (request.target) plan.target_m = parse_point("--target", *request.target);
   if (request.target && !request.eye)
@@ -158,8 +159,8 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
     else if (*request.color == "speed")
       plan.color = ColorBy::kSpeed;
     else
-      throw UserError(fmt::format("--color {}: expected \"strain\" or \"speed\"",
-                                  printable(*request.color)));
+      throw UserError(
+          fmt::format("--color {}: expected \"strain\" or \"speed\"", printable(*request.color)));
     if (plan.style != render::Style::kShaded)
       throw UserError(fmt::format("--color {}: colours the shaded style (not {})", *request.color,
                                   render::to_string(plan.style)));
@@ -207,8 +208,10 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
     if (plan.target_m) options.camera.target_m = *plan.target_m;
     if ((options.camera.target_m - options.camera.eye_m).norm() < 1e-6)
       throw UserError("--eye: the camera is at the point it looks at; move it or give --target");
-    if ((options.camera.target_m - options.camera.eye_m).normalized().cross(options.camera.up).norm() <
-        1e-6)
+    if ((options.camera.target_m - options.camera.eye_m)
+            .normalized()
+            .cross(options.camera.up)
+            .norm() < 1e-6)
       options.camera.up = Vec3::UnitZ();  // looking straight down or up: y cannot be up
   }
   // The range, against the file (the camera above still frames the whole run).
@@ -244,7 +247,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   const auto context = render::make_osmesa_context(plan.width, plan.height);
   render::FrameRenderer renderer(*context, options);
   std::optional<render::VideoWriter> video;
-  if (plan.container) video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
+  if (plan.container)
+    video.emplace(plan.output, *plan.container, plan.width, plan.height, plan.fps);
   double draw_s = 0.0, encode_s = 0.0;
   Progress progress(Progress::wanted(plan.quiet), last - first, "render");
   const std::vector<double> times = reader.times_s();
@@ -279,8 +283,9 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   const double n = std::max(1, last - first);
   return fmt::format(
       "rendered {} frames ({}{}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
-      last - first, render::to_string(plan.style), colored, plan.width, plan.height, 1e3 * draw_s / n,
-      1e3 * encode_s / n, plan.container ? render::to_string(*plan.container) : "PNG", plan.output);
+      last - first, render::to_string(plan.style), colored, plan.width, plan.height,
+      1e3 * draw_s / n, 1e3 * encode_s / n,
+      plan.container ? render::to_string(*plan.container) : "PNG", plan.output);
 }
 
 int render_command(const std::string& h5_path, const RenderRequest& request) {

@@ -48,7 +48,7 @@ struct RenderPlan {
   ColorBy color = ColorBy::kNone;
   /// --eye / --target: an explicit camera (target: the run's centre when not given).
   std::optional<Vec3> eye_m, target_m;
-  bool quiet = false;  ///< no progress line (run --quiet)
+  bool quiet = false;              ///< no progress line (run --quiet)
   CreatedDirectories directories;  ///< made for the output; removed again if left empty
 };
 

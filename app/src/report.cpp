@@ -147,11 +147,14 @@ ReportRow parse_csv_line(const std::string& line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    cells.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    cells.push_back(
+        line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
-  const auto number = [&](std::size_t i) { return cells.size() > i && !cells[i].empty() ? std::stod(cells[i]) : 0.0; };
+  const auto number = [&](std::size_t i) {
+    return cells.size() > i && !cells[i].empty() ? std::stod(cells[i]) : 0.0;
+  };
   const auto optional = [&](std::size_t i) -> std::optional<double> {
     if (cells.size() <= i || cells[i].empty()) return std::nullopt;
     return std::stod(cells[i]);

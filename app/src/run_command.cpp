@@ -161,9 +161,8 @@ int run_command(const RunOptions& options) {
     max_strain_seen = std::max(max_strain_seen, strain.max);
     if (frame % scene.output.every == 0) {
       if (auto full = writer.out_of_room()) {  // stop while the file is whole
-        status = {RunState::kInterrupted,
-                  fmt::format("stopped before frame {} (t = {:.4g} s): {}", frame,
-                              frame / scene.fps, *full)};
+        status = {RunState::kInterrupted, fmt::format("stopped before frame {} (t = {:.4g} s): {}",
+                                                      frame, frame / scene.fps, *full)};
         out_of_room = true;
         break;
       }
@@ -181,10 +180,10 @@ int run_command(const RunOptions& options) {
                              simulation->kinetic_energy_j(),
                              series};
       // Frame times are n / fps exactly, not the sum of the substeps.
-      writer.write_frame(frame / scene.fps,
-                         {positions, simulation->velocities(), node_strain,
-                          simulation->coarse_positions()},
-                         stats);
+      writer.write_frame(
+          frame / scene.fps,
+          {positions, simulation->velocities(), node_strain, simulation->coarse_positions()},
+          stats);
       times.reset();
       since_write = std::chrono::steady_clock::now();
     }
@@ -192,7 +191,7 @@ int run_command(const RunOptions& options) {
     progress.update(frame, frame / scene.fps, 1000.0 * total_wall_s / (frame + 1));
     if (InterruptGuard::requested() && frame + 1 < frames) {
       status = {RunState::kInterrupted, fmt::format("signal received after frame {} (t = {:.4g} s)",
-                                                   frame, frame / scene.fps)};
+                                                    frame, frame / scene.fps)};
       break;
     }
   }
@@ -214,15 +213,15 @@ int run_command(const RunOptions& options) {
     return int(ExitCode::kIoFailure);
   }
   if (status.diverged()) {
-    fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n",
-               status.reason, writer.frames_written(), writer.path());
+    fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n", status.reason,
+               writer.frames_written(), writer.path());
     if (!rendered.empty()) fmt::print("{}\n", rendered);
     return int(status.exit_code());
   }
   fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
              to_string(status.state), writer.frames_written(), lattice.rows, lattice.cols,
-             to_string(scene.mode),
-             ms_per_frame, simulation->stepping_summary(), 100.0 * max_strain_seen, writer.path());
+             to_string(scene.mode), ms_per_frame, simulation->stepping_summary(),
+             100.0 * max_strain_seen, writer.path());
   for (const std::string& note : scene.notes) fmt::print("{}\n", note);
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   if (unconverged_frames > 0)

@@ -11,11 +11,11 @@
 
 #include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/core/divergence.hpp"
+#include "flagsim/core/errors.hpp"
 #include "flagsim/core/stage_times.hpp"
+#include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/hybrid/simulation.hpp"
-#include "flagsim/core/errors.hpp"
-#include "flagsim/core/stop_request.hpp"
 #include "progress.hpp"
 
 namespace flagsim::app {
@@ -41,7 +41,8 @@ void stop_if_requested(const Scene& scene, int frame) {
 
 // The progress line after frame `frame`, from the times summed so far.
 void report_progress(Progress* progress, const RunRecord& record, int frame) {
-  if (progress) progress->update(frame, frame / record.fps, record.ms_per_frame / std::max(frame, 1));
+  if (progress)
+    progress->update(frame, frame / record.fps, record.ms_per_frame / std::max(frame, 1));
 }
 
 void average_times(RunRecord& record) {

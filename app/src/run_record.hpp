@@ -19,9 +19,9 @@ struct RunRecord {
   analysis::Frames coarse;  ///< hybrid: the coarse nodes the infill used [T][Jc*Kc]
   std::vector<int> coarse_rows, coarse_cols;  ///< their dense rows and columns
   int substeps_per_frame = 0;
-  double ms_per_frame = 0.0;        ///< every stage, mean over frames 1..T-1
-  double physics_ms = 0.0;          ///< the physics' stages (force terms, integrate, bullet_step)
-  double infill_ms = 0.0;           ///< coarse_slack and infill_3.x
+  double ms_per_frame = 0.0;  ///< every stage, mean over frames 1..T-1
+  double physics_ms = 0.0;    ///< the physics' stages (force terms, integrate, bullet_step)
+  double infill_ms = 0.0;     ///< coarse_slack and infill_3.x
   /// complete, or diverged (frames up to the last good one) with its reason
   RunStatus status;
   std::string scene_toml;  ///< the scene as run (Scene::toml_text): what a saved record is of

@@ -36,8 +36,8 @@ int validate_command(const std::string& scene_path, const std::vector<std::strin
 int scene_command(const std::string& scene_path, bool print_default,
                   const std::vector<std::string>& sets) {
   if (print_default && !scene_path.empty())
-    throw UserError(fmt::format("scene {} --default: give a scene file or --default, not both",
-                                scene_path));
+    throw UserError(
+        fmt::format("scene {} --default: give a scene file or --default, not both", scene_path));
   if (!print_default && scene_path.empty())
     throw UserError("scene: say which scene to print: flag-sim scene FILE, or scene --default");
   if (print_default && sets.empty()) {  // the file itself, comments and all

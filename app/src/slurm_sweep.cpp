@@ -20,8 +20,8 @@ namespace {
 // quotes. Paths that appear in them are held to characters that need none.
 bool plain_path(const std::string& path) {
   return !path.empty() && std::all_of(path.begin(), path.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-           c == '/' || c == '.' || c == '_' || c == '-' || c == '+';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '/' ||
+           c == '.' || c == '_' || c == '-' || c == '+';
   });
 }
 
@@ -50,9 +50,9 @@ std::string array_spec(const std::vector<int>& points) {
   for (std::size_t i = 0; i < points.size();) {
     std::size_t j = i;
     while (j + 1 < points.size() && points[j + 1] == points[j] + 1) ++j;
-    spec += fmt::format("{}{}", spec.empty() ? "" : ",",
-                        j > i ? fmt::format("{}-{}", points[i], points[j])
-                              : std::to_string(points[i]));
+    spec +=
+        fmt::format("{}{}", spec.empty() ? "" : ",",
+                    j > i ? fmt::format("{}-{}", points[i], points[j]) : std::to_string(points[i]));
     i = j + 1;
   }
   return spec;
@@ -89,8 +89,9 @@ std::string submit(const std::vector<std::string>& argv, const std::string& scri
   if (code != 0 || id.empty() ||
       !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; }))
     throw IoError(fmt::format("sbatch {}: {}", script,
-                              code < 0 ? std::string("cannot run sbatch (is Slurm's client installed?)")
-                                       : fmt::format("exit {}: {}", code, output)));
+                              code < 0
+                                  ? std::string("cannot run sbatch (is Slurm's client installed?)")
+                                  : fmt::format("exit {}: {}", code, output)));
   return id;
 }
 
@@ -106,8 +107,9 @@ std::string shell_quoted(const std::vector<std::string>& argv) {
   return line;
 }
 
-std::string write_slurm_sweep(const SlurmSweep& slurm, const std::vector<std::string>& point_command,
-                              int points, const std::string& csv, const std::string& plot) {
+std::string write_slurm_sweep(const SlurmSweep& slurm,
+                              const std::vector<std::string>& point_command, int points,
+                              const std::string& csv, const std::string& plot) {
   const fs::path dir = fs::absolute(slurm.dir).lexically_normal();
   if (!plain_path(dir.string()))
     throw UserError(fmt::format(
@@ -116,16 +118,15 @@ std::string write_slurm_sweep(const SlurmSweep& slurm, const std::vector<std::st
         slurm.dir));
   for (const std::string& arg : slurm.sbatch_args)
     if (!arg.starts_with("--") || arg.find_first_of(" \t\n\r") != std::string::npos)
-      throw UserError(fmt::format(
-          "--slurm-arg={}: expected one sbatch option as --name=value (e.g. "
-          "--slurm-arg=--partition=short), no blanks",
-          printable(arg)));
+      throw UserError(
+          fmt::format("--slurm-arg={}: expected one sbatch option as --name=value (e.g. "
+                      "--slurm-arg=--partition=short), no blanks",
+                      printable(arg)));
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw UserError(fmt::format("--slurm {}: exists and is not a directory", slurm.dir));
   fs::create_directories(dir, ec);
-  if (ec)
-    throw UserError(fmt::format("--slurm {}: cannot create it: {}", slurm.dir, ec.message()));
+  if (ec) throw UserError(fmt::format("--slurm {}: cannot create it: {}", slurm.dir, ec.message()));
 
   const std::string reference = (dir / "reference.rec").string();
   const bool reference_done = fs::exists(reference, ec) && sweep_point_done(point_csv(dir, 0), 0);
@@ -138,11 +139,11 @@ std::string write_slurm_sweep(const SlurmSweep& slurm, const std::vector<std::st
   reference_command.insert(reference_command.end(),
                            {"--point", "0", "--reference-file", reference, "-o", point_csv(dir, 0),
                             "--quiet", "--resume"});
-  write_script(dir / "reference.sbatch",
-               header("flag-sim-reference", (dir / "reference-%j.out").string(),
-                      "The sweep's reference (point 0), saved for the other points.",
-                      slurm.sbatch_args) +
-                   "exec " + shell_quoted(reference_command) + "\n");
+  write_script(
+      dir / "reference.sbatch",
+      header("flag-sim-reference", (dir / "reference-%j.out").string(),
+             "The sweep's reference (point 0), saved for the other points.", slurm.sbatch_args) +
+          "exec " + shell_quoted(reference_command) + "\n");
   // sweep.sbatch: one task per point not yet done, each reading the reference.
   std::vector<std::string> task_command = point_command;
   task_command.insert(task_command.end(), {"--point"});
@@ -163,10 +164,11 @@ std::string write_slurm_sweep(const SlurmSweep& slurm, const std::vector<std::st
   if (!plot.empty()) merge_command.insert(merge_command.end(), {"--plot", plot});
   merge_command.push_back("--merge");
   for (int i = 0; i < points; ++i) merge_command.push_back(point_csv(dir, i));
-  write_script(dir / "merge.sbatch",
-               header("flag-sim-merge", (dir / "merge-%j.out").string(),
-                      fmt::format("Merges the {} points into {}.", points, csv), slurm.sbatch_args) +
-                   "exec " + shell_quoted(merge_command) + "\n");
+  write_script(
+      dir / "merge.sbatch",
+      header("flag-sim-merge", (dir / "merge-%j.out").string(),
+             fmt::format("Merges the {} points into {}.", points, csv), slurm.sbatch_args) +
+          "exec " + shell_quoted(merge_command) + "\n");
 
   std::string said = fmt::format(
       "sweep: {} points as Slurm jobs in {}: reference.sbatch ({}), sweep.sbatch (points {}), "

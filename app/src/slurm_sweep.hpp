@@ -27,8 +27,9 @@ struct SlurmSweep {
 /// into `csv` (and `plot`, may be empty). With `slurm.submit`, submits them.
 /// Returns what to print. Throws UserError (bad DIR or --slurm-arg) before
 /// anything is written, IoError when sbatch fails.
-std::string write_slurm_sweep(const SlurmSweep& slurm, const std::vector<std::string>& point_command,
-                              int points, const std::string& csv, const std::string& plot);
+std::string write_slurm_sweep(const SlurmSweep& slurm,
+                              const std::vector<std::string>& point_command, int points,
+                              const std::string& csv, const std::string& plot);
 
 /// Whether `csv` holds point `point`'s row, whole (what sweep --point wrote).
 bool sweep_point_done(const std::string& csv, int point);

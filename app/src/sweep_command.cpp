@@ -210,10 +210,9 @@ std::vector<std::string> run_children(const std::vector<std::string>& argv, int 
                                       const fs::path& dir, const std::string& reference_file) {
   std::vector<std::string> lines;
   std::map<pid_t, int> running;
-  const bool has_reference_file =
-      std::any_of(argv.begin(), argv.end(), [](const std::string& a) {
-        return a == "--reference-file" || a.starts_with("--reference-file=");
-      });
+  const bool has_reference_file = std::any_of(argv.begin(), argv.end(), [](const std::string& a) {
+    return a == "--reference-file" || a.starts_with("--reference-file=");
+  });
   int next = 0, failed = -1;
   // SIGINT / SIGTERM to this process (the caller's InterruptGuard): stop
   // starting points, pass SIGTERM on to every worker, wait for them all (none

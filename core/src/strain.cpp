@@ -25,7 +25,8 @@ StrainStats link_strain(const Lattice& lattice, std::span<const Vec3> positions_
   };
   for (int j = 0; j < rows; ++j) {
     const Vec3* here = positions_m.data() + lattice.index(j, 0);
-    for (int k = 0; k + 1 < cols; ++k) row_links[std::size_t(k)] = strain_of(here[k], here[k + 1], sx);
+    for (int k = 0; k + 1 < cols; ++k)
+      row_links[std::size_t(k)] = strain_of(here[k], here[k + 1], sx);
     if (j + 1 < rows)
       for (int k = 0; k < cols; ++k) below[std::size_t(k)] = strain_of(here[k], here[k + cols], sy);
     else

@@ -181,8 +181,8 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
 }
 
 std::vector<std::string> TableReader::choice_set(std::string_view key,
-                                                std::vector<std::string> fallback,
-                                                std::vector<std::string_view> choices) {
+                                                 std::vector<std::string> fallback,
+                                                 std::vector<std::string_view> choices) {
   const toml::node* node = lookup(key);
   if (!node) return fallback;
   std::string listed;
@@ -197,10 +197,10 @@ std::vector<std::string> TableReader::choice_set(std::string_view key,
     const std::string value = *item.value<std::string>();
     if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
       const std::string guess = closest_name(value, choices);
-      throw UserError(fmt::format(
-          "{}: {}: expected {}, got \"{}\"{}", where_key(key_name(key), item.source()),
-          key_name(key), what, value,
-          guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
+      throw UserError(
+          fmt::format("{}: {}: expected {}, got \"{}\"{}", where_key(key_name(key), item.source()),
+                      key_name(key), what, value,
+                      guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
     }
     if (std::find(values.begin(), values.end(), value) != values.end())
       throw UserError(fmt::format("{}: {}: \"{}\" is listed twice",

@@ -136,16 +136,16 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
         fmt::format("{}: cannot create the output file (is the directory writable?)", path_));
 
   const hid_t root = impl_->file.get();
-  bool ok = h5::write_string_attribute(root, "format", kFormat) &&
-            h5::write_string_attribute(root, "status",
-                                       std::string(to_string(RunState::kRunning))) &&
-            h5::write_string_attribute(root, "mode", info.mode) &&
-            h5::write_string_attribute(root, "effects",
-                                       fmt::format("{}", fmt::join(info.effects, ","))) &&
-            h5::write_string_attribute(root, "scene", info.scene_toml) &&
-            h5::write_string_attribute(root, "version", info.version) &&
-            h5::write_int_attribute(root, "seed", (long long)info.seed) &&
-            h5::write_string_attribute(root, "seed.units", "1");
+  bool ok =
+      h5::write_string_attribute(root, "format", kFormat) &&
+      h5::write_string_attribute(root, "status", std::string(to_string(RunState::kRunning))) &&
+      h5::write_string_attribute(root, "mode", info.mode) &&
+      h5::write_string_attribute(root, "effects",
+                                 fmt::format("{}", fmt::join(info.effects, ","))) &&
+      h5::write_string_attribute(root, "scene", info.scene_toml) &&
+      h5::write_string_attribute(root, "version", info.version) &&
+      h5::write_int_attribute(root, "seed", (long long)info.seed) &&
+      h5::write_string_attribute(root, "seed.units", "1");
   for (const NamedNumber& number : info.numbers)
     ok = ok &&
          (number.integer ? h5::write_int_attribute(root, number.name.c_str(),
@@ -164,8 +164,7 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   };
   impl_->fields = info.fields;
   if (wants("velocity"))
-    impl_->velocity =
-        make_series(frames.get(), "velocity", H5T_IEEE_F32LE, {rows, cols, 3}, "m/s");
+    impl_->velocity = make_series(frames.get(), "velocity", H5T_IEEE_F32LE, {rows, cols, 3}, "m/s");
   if (wants("strain"))
     impl_->strain = make_series(frames.get(), "strain", H5T_IEEE_F32LE, {rows, cols}, "1");
   impl_->max_strain = make_series(stats.get(), "max_strain", H5T_IEEE_F32LE, {}, "1");
@@ -178,8 +177,8 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   impl_->kinetic = make_series(stats.get(), "kinetic_energy", H5T_IEEE_F64LE, {}, "J");
   ok = ok && h5::write_string_list_attribute(impl_->stage_seconds.get(), "stages", info.stages);
   for (const RunInfo::Series& series : info.series) {
-    impl_->series.push_back(make_series(stats.get(), series.name.c_str(), H5T_IEEE_F64LE, {},
-                                        series.units.c_str()));
+    impl_->series.push_back(
+        make_series(stats.get(), series.name.c_str(), H5T_IEEE_F64LE, {}, series.units.c_str()));
     ok = ok && impl_->series.back().valid();
   }
   if (!info.coarse_rows.empty()) ok = ok && write_coarse_layout(root, info);
@@ -201,9 +200,9 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
        H5Dwrite(rest.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) >= 0;
   ok = ok && impl_->time.valid() && impl_->positions.valid() &&
        (impl_->velocity.valid() || !wants("velocity")) &&
-       (impl_->strain.valid() || !wants("strain")) && impl_->max_strain.valid() && impl_->mean_strain.valid() &&
-       impl_->stage_seconds.valid() && impl_->wall_seconds.valid() && impl_->kinetic.valid() &&
-       H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
+       (impl_->strain.valid() || !wants("strain")) && impl_->max_strain.valid() &&
+       impl_->mean_strain.valid() && impl_->stage_seconds.valid() && impl_->wall_seconds.valid() &&
+       impl_->kinetic.valid() && H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
   if (!ok) {
     impl_.reset();
     fs::remove(partial, ec);
@@ -248,9 +247,9 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
   bool ok = true;
   if (impl_->coarse_positions.valid()) {
     if (fields.coarse_m.size() * 3 != impl_->coarse_buffer.size())
-      throw std::invalid_argument(
-          fmt::format("FrameWriter::write_frame: {} coarse nodes for {}", fields.coarse_m.size(),
-                      impl_->coarse_buffer.size() / 3));
+      throw std::invalid_argument(fmt::format("FrameWriter::write_frame: {} coarse nodes for {}",
+                                              fields.coarse_m.size(),
+                                              impl_->coarse_buffer.size() / 3));
     to_float_xyz(fields.coarse_m, impl_->coarse_buffer);
     ok = append_row(impl_->coarse_positions.get(), index, H5T_NATIVE_FLOAT,
                     impl_->coarse_buffer.data());
@@ -263,7 +262,8 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
     to_float_xyz(fields.velocities_m_s, buffer);
     ok = ok && append_row(impl_->velocity.get(), index, H5T_NATIVE_FLOAT, buffer.data());
   }
-  if (strain) ok = ok && append_row(impl_->strain.get(), index, H5T_NATIVE_FLOAT, fields.strain.data());
+  if (strain)
+    ok = ok && append_row(impl_->strain.get(), index, H5T_NATIVE_FLOAT, fields.strain.data());
   std::vector<double> stage_row(stats.stage_seconds.begin(), stats.stage_seconds.end());
   stage_row.resize(impl_->stage_count, 0.0);
   const double write_s =

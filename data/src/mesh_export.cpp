@@ -63,8 +63,8 @@ void Pc2Writer::finish() {
   if (!flushed || !closed)
     throw IoError(fmt::format("{}: writing the point cache failed (disk full?)", path_));
   if (written_ != samples_)
-    throw IoError(fmt::format("{}: {} samples written, the header says {}", path_, written_,
-                              samples_));
+    throw IoError(
+        fmt::format("{}: {} samples written, the header says {}", path_, written_, samples_));
 }
 
 std::string obj_text(int rows, int cols, std::span<const Vec3> positions_m,
@@ -73,8 +73,8 @@ std::string obj_text(int rows, int cols, std::span<const Vec3> positions_m,
     return positions_m[std::size_t(j) * std::size_t(cols) + std::size_t(k)];
   };
   fmt::memory_buffer out;
-  fmt::format_to(std::back_inserter(out), "# {}\n# {} x {} nodes, m, y up\no flag\n", comment,
-                 rows, cols);
+  fmt::format_to(std::back_inserter(out), "# {}\n# {} x {} nodes, m, y up\no flag\n", comment, rows,
+                 cols);
   // float32 values printed with 9 significant digits read back as the same float32.
   for (int j = 0; j < rows; ++j)
     for (int k = 0; k < cols; ++k) {

@@ -140,8 +140,8 @@ std::vector<double> OutputReader::frame_field(const char* name, int frame, int c
   const int rank = components == 1 ? 3 : 4;
   hsize_t dims[4] = {0, 0, 0, 0};
   if (H5Sget_simple_extent_ndims(file_space.get()) != rank ||
-      H5Sget_simple_extent_dims(file_space.get(), dims, nullptr) < 0 ||
-      dims[0] <= hsize_t(frame) || dims[1] != hsize_t(rows_) || dims[2] != hsize_t(cols_) ||
+      H5Sget_simple_extent_dims(file_space.get(), dims, nullptr) < 0 || dims[0] <= hsize_t(frame) ||
+      dims[1] != hsize_t(rows_) || dims[2] != hsize_t(cols_) ||
       (rank == 4 && dims[3] != hsize_t(components)))
     throw UserError(fmt::format("{}: {} is not [T, {}, {}{}] with T > {}", path_, name, rows_,
                                 cols_, rank == 4 ? fmt::format(", {}", components) : "", frame));

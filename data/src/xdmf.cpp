@@ -46,7 +46,8 @@ std::string data_item(const std::string& h5_name, const Lattice& lattice, const 
 }
 
 bool wanted(const Field& field, std::span<const std::string> fields) {
-  return !field.attribute_type || std::find(fields.begin(), fields.end(), field.name) != fields.end();
+  return !field.attribute_type ||
+         std::find(fields.begin(), fields.end(), field.name) != fields.end();
 }
 
 }  // namespace
@@ -79,14 +80,14 @@ bool write_xdmf_views(std::int64_t file_id, const Lattice& lattice, std::size_t 
       const hsize_t count[4] = {1, rows, cols, 3};
       h5::Handle create = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
       H5Pset_obj_track_times(create.get(), false);
-      if (H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, start, nullptr, count,
-                              nullptr) < 0 ||
-          H5Pset_virtual(create.get(), view_space.get(), ".", source.c_str(),
-                         source_space.get()) < 0)
+      if (H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) <
+              0 ||
+          H5Pset_virtual(create.get(), view_space.get(), ".", source.c_str(), source_space.get()) <
+              0)
         return false;
-      h5::Handle view = h5::dataset(H5Dcreate2(group.get(), std::to_string(t).c_str(),
-                                               H5T_IEEE_F32LE, view_space.get(), H5P_DEFAULT,
-                                               create.get(), H5P_DEFAULT));
+      h5::Handle view =
+          h5::dataset(H5Dcreate2(group.get(), std::to_string(t).c_str(), H5T_IEEE_F32LE,
+                                 view_space.get(), H5P_DEFAULT, create.get(), H5P_DEFAULT));
       if (!view.valid()) return false;
     }
   }

@@ -38,9 +38,7 @@ class FullLatticeSimulation final : public Simulation {
   explicit FullLatticeSimulation(const Scene& scene) : physics_(integrator_for(scene)) {}
   const Lattice& lattice() const override { return physics_->model().lattice; }
   std::vector<std::string> effects() const override { return physics_->effects(); }
-  std::vector<NamedNumber> numbers() const override {
-    return stepping_numbers(*physics_);
-  }
+  std::vector<NamedNumber> numbers() const override { return stepping_numbers(*physics_); }
   void register_stages(StageTimes& times) override { physics_->register_stages(times); }
   void advance_frame(StageTimes* times) override { physics_->advance_frame(times); }
   std::span<const Vec3> positions() const override { return physics_->state().x_m; }
@@ -206,9 +204,7 @@ class HybridSimulation final : public Simulation {
     dense_.add_effects(effects);
     return effects;
   }
-  std::vector<NamedNumber> numbers() const override {
-    return stepping_numbers(*physics_);
-  }
+  std::vector<NamedNumber> numbers() const override { return stepping_numbers(*physics_); }
   void register_stages(StageTimes& times) override {
     physics_->register_stages(times);
     if (needs_slack()) slack_stage_ = times.add("coarse_slack", StageGroup::kInfill);

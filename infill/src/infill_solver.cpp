@@ -150,22 +150,24 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
     capped_ = capped_ || sweeps >= relax_sweeps_;
   };
   std::copy(positions_m.begin(), positions_m.end(), previous_.begin());
-  timed(stages_.boundary, [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
-    for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
-      positions_m[coarse_dense_[c]] = coarse_target_m[c];
-    for (const Edge& edge : edges_) {
-      // The cloth's normal at the edge: its cells' normals, averaged.
-      Vec3 normal = Vec3::Zero();
-      for (std::ptrdiff_t cell : edge.cells)
-        if (cell >= 0) normal += cell_normal(std::size_t(cell), positions_m).normalized();
-      move_edge(edge.fiber, edge.before, edge.after, normal, positions_m, previous_,
-                kLengthTolerance);
-      // A lone edge got the paper's fiber steps and needs 3.4; an arc is exact.
-      if (edge.before < 0 && edge.after < 0)
-        relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
-    }
-  });
-  timed(stages_.initial_move, [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2
+  timed(stages_.boundary,
+        [&] {  // 3.1: coarse nodes to their targets, then every cell edge as a fiber
+          for (std::size_t c = 0; c < coarse_dense_.size(); ++c)
+            positions_m[coarse_dense_[c]] = coarse_target_m[c];
+          for (const Edge& edge : edges_) {
+            // The cloth's normal at the edge: its cells' normals, averaged.
+            Vec3 normal = Vec3::Zero();
+            for (std::ptrdiff_t cell : edge.cells)
+              if (cell >= 0) normal += cell_normal(std::size_t(cell), positions_m).normalized();
+            move_edge(edge.fiber, edge.before, edge.after, normal, positions_m, previous_,
+                      kLengthTolerance);
+            // A lone edge got the paper's fiber steps and needs 3.4; an arc is exact.
+            if (edge.before < 0 && edge.after < 0)
+              relax_fiber(edge.fiber, positions_m, relax_sweeps_, kRelaxTolerance);
+          }
+        });
+  timed(stages_.initial_move,
+        [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2
   timed(stages_.length, [&] {  // 3.3: rows, then columns
     for (const Fiber& row : cell_rows_)
       length_search(row, positions_m, previous_, kLengthTolerance);

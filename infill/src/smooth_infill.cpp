@@ -200,8 +200,8 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   // consecutive coarse links). Linear interpolation across left the row
   // fibers' lengths with a kink in j at every coarse row, which the columns
   // between them follow: default scene, frames after 1 s with the median
-  // turning on coarse rows over 1.3x that between, 3 of 271 (linear) -> 1. A band that stepped at each coarse line (each
-  // cell's own, the more stretched of its two links) made the fibers on a
+  // turning on coarse rows over 1.3x that between, 3 of 271 (linear) -> 1. A band that stepped at
+  // each coarse line (each cell's own, the more stretched of its two links) made the fibers on a
   // coarse line shorter or longer than their neighbours, and changed every
   // fiber's correction abruptly where it crossed one: a crease there
   // (measured: turning angles on coarse rows up to 1.6x those between).
@@ -253,7 +253,8 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
                         StageTimes* times) {
   assert(coarse_m.size() == grid_.coarse_count() && positions_m.size() == lattice_.node_count());
   if (coarser_)  // part of 3.4: the coarser levels' projections start this one's
-    run_timed(times, stages_.projection, [&] { coarser_->fill(coarse_m, coarser_positions_, nullptr); });
+    run_timed(times, stages_.projection,
+              [&] { coarser_->fill(coarse_m, coarser_positions_, nullptr); });
   run_timed(times, stages_.surface, [&] {  // 3.1-3.2: the surface, kept for the level above and 3.5
     spline_.evaluate(coarse_m, surface_);
     std::copy(surface_.begin(), surface_.end(), positions_m.begin());

@@ -2,9 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <map>
-
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "process.hpp"
@@ -88,7 +87,8 @@ TEST(Compare, FlapIsMeasuredAtTheFlyEndWhicheverEdgeIsPinned) {
   TempDir dir;
   std::map<std::string, std::vector<double>> flap;
   for (const std::string side : {"left", "right"}) {
-    std::vector<std::string> args = {"compare", "-o", side + ".csv", "--frames", "61", "--set",
+    std::vector<std::string> args = {"compare",           "-o",    side + ".csv",
+                                     "--frames",          "61",    "--set",
                                      "flag.fine=[17,25]", "--set", "flag.pin=\"" + side + "\""};
     if (side == "right") args.insert(args.end(), {"--set", "wind.velocity=[-10,0,0]"});
     const ProcessResult result = run_flag_sim(args, dir.path());
@@ -161,16 +161,16 @@ TEST(Sweep, PointsShareOneSavedReference) {
   EXPECT_EQ(without_timing(read_csv(dir.file("shared.csv"))),
             without_timing(read_csv(dir.file("alone.csv"))));
   // A saved reference of another sweep (here: other frames) is refused, not measured against.
-  const ProcessResult other = run_flag_sim(
-      {"sweep", "--coarse", "5x7", "--quiet", "--set", "flag.fine=[17,25]", "--frames", "11", "-o",
-       "o.csv", "--point", "2", "--reference-file", "ref.rec"},
-      dir.path());
+  const ProcessResult other =
+      run_flag_sim({"sweep", "--coarse", "5x7", "--quiet", "--set", "flag.fine=[17,25]", "--frames",
+                    "11", "-o", "o.csv", "--point", "2", "--reference-file", "ref.rec"},
+                   dir.path());
   EXPECT_EQ(other.exit_code, 2);
   EXPECT_NE(other.err.find("ref.rec: the reference of another scene or sweep"), std::string::npos)
       << other.err;
   dir.write("bad.rec", "not a record");
-  const ProcessResult bad =
-      run_flag_sim(with({"-o", "b.csv", "--point", "2", "--reference-file", "bad.rec"}), dir.path());
+  const ProcessResult bad = run_flag_sim(
+      with({"-o", "b.csv", "--point", "2", "--reference-file", "bad.rec"}), dir.path());
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("bad.rec: not a whole flag-sim run record"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir.file("b.csv")));
@@ -202,8 +202,8 @@ TEST(Sweep, SlurmScriptsRunAsTheSweep) {
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
   };
-  const ProcessResult written =
-      run_flag_sim(with({"-o", "slurm.csv", "--slurm", "jobs", "--slurm-arg=--time=5"}), dir.path());
+  const ProcessResult written = run_flag_sim(
+      with({"-o", "slurm.csv", "--slurm", "jobs", "--slurm-arg=--time=5"}), dir.path());
   ASSERT_EQ(written.exit_code, 0) << written.err;
   EXPECT_NE(written.out.find("sweep.sbatch (points 1-2)"), std::string::npos) << written.out;
   const auto sh = [&](const std::string& script, const std::string& task) {
@@ -228,7 +228,8 @@ TEST(Sweep, SlurmScriptsRunAsTheSweep) {
   for (const auto& [args, words] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"-o", "x.csv", "--slurm", "bad dir"}, "--slurm bad dir: use a directory path of"},
            {{"-o", "x.csv", "--submit"}, "--submit: goes with --slurm DIR"},
-           {{"-o", "x.csv", "--slurm", "j2", "--slurm-arg=--time 10"}, "expected one sbatch option"},
+           {{"-o", "x.csv", "--slurm", "j2", "--slurm-arg=--time 10"},
+            "expected one sbatch option"},
            {{"-o", "x.csv", "--slurm", "j2", "--jobs", "2"}, "leave out --point, --jobs"},
            {{"-o", "x.csv", "--resume"}, "--resume: goes with --point I"}}) {
     const ProcessResult refused = run_flag_sim(with(args), dir.path());

@@ -136,8 +136,8 @@ TEST(Hybrid, TakesInfillAndWrinkleSettings) {
 // not converge (33 x 49 from 9 x 13 needs 14-263 measured); the default cap converges.
 TEST(Hybrid, TheRelaxationCapIsThePassesAFrameMakes) {
   TempDir dir;
-  const std::vector<std::string> base = {"run", "--set", "flag.fine=[33,49]", "--frames", "6",
-                                         "--set", "infill.solver=\"paper\"", "--quiet"};
+  const std::vector<std::string> base = {"run", "--set", "flag.fine=[33,49]",       "--frames",
+                                         "6",   "--set", "infill.solver=\"paper\"", "--quiet"};
   std::vector<std::string> capped = base, free = base;
   capped.insert(capped.end(), {"--set", "infill.relax_iterations=2", "-o", "capped.h5"});
   free.insert(free.end(), {"-o", "free.h5"});

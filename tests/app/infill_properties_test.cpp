@@ -148,8 +148,8 @@ TEST(InfillProperties, Three_WrinkleWavelengthGrowsAsTheFiberRadiusSquared) {
   }
   const double slope = srw / srr;
   EXPECT_NEAR(slope, 2.0, 0.5) << "wavelengths " << std::exp(log_wavelength[0]) << ", "
-                               << std::exp(log_wavelength[1]) << ", "
-                               << std::exp(log_wavelength[2]) << " m";
+                               << std::exp(log_wavelength[1]) << ", " << std::exp(log_wavelength[2])
+                               << " m";
   RecordProperty("slope", std::to_string(slope));
 }
 

@@ -1,4 +1,5 @@
 // `flag-sim render` and `run --render` end to end.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,8 +9,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
@@ -97,10 +96,9 @@ TEST(Render, VideoContainersAndTheirFrameRate) {
     EXPECT_EQ(probe.out, "10/1\n") << name << probe.err;
   }
   // 13 frames written every 3rd: 5 frames of a 30 fps run, 5 x 3 / 30 = 0.5 s of video.
-  const ProcessResult duration =
-      run_process("/usr/bin/ffprobe",
-                  {"-v", "error", "-show_entries", "format=duration", "-of", "csv=p=0", "v.mp4"},
-                  dir.path());
+  const ProcessResult duration = run_process(
+      "/usr/bin/ffprobe",
+      {"-v", "error", "-show_entries", "format=duration", "-of", "csv=p=0", "v.mp4"}, dir.path());
   EXPECT_NEAR(std::stod(duration.out.empty() ? "0" : duration.out), 0.5, 1e-3) << duration.err;
 }
 
@@ -148,8 +146,8 @@ TEST(Render, AFrameRangeAndACameraView) {
                          dir.path())
                 .exit_code,
             0);
-  ASSERT_EQ(run_flag_sim({"render", "r.h5", "-o", "eye_target", "--frames", "1:2", "--eye",
-                          "3,3,3", "--target", "0,2,0", "--size", "160x90"},
+  ASSERT_EQ(run_flag_sim({"render", "r.h5", "-o", "eye_target", "--frames", "1:2", "--eye", "3,3,3",
+                          "--target", "0,2,0", "--size", "160x90"},
                          dir.path())
                 .exit_code,
             0);
@@ -179,13 +177,12 @@ TEST(Render, AFrameRangeAndACameraView) {
 TEST(Render, ColouredByAPerNodeField) {
   TempDir dir;
   ASSERT_EQ(run_flag_sim(kSmallRun, dir.path()).exit_code, 0);
-  const ProcessResult plain =
-      run_flag_sim({"render", "r.h5", "-o", "plain", "--frames", "1:3", "--size", "160x90"},
-                   dir.path());
+  const ProcessResult plain = run_flag_sim(
+      {"render", "r.h5", "-o", "plain", "--frames", "1:3", "--size", "160x90"}, dir.path());
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  const ProcessResult strain = run_flag_sim(
-      {"render", "r.h5", "-o", "strain", "--frames", "1:3", "--size", "160x90", "--color", "strain"},
-      dir.path());
+  const ProcessResult strain = run_flag_sim({"render", "r.h5", "-o", "strain", "--frames", "1:3",
+                                             "--size", "160x90", "--color", "strain"},
+                                            dir.path());
   ASSERT_EQ(strain.exit_code, 0) << strain.err;
   const data::OutputReader reader(dir.file("r.h5"));
   const std::vector<double> max_strain = reader.stat("max_strain");

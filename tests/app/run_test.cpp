@@ -1,9 +1,9 @@
 // `flag-sim run`, `validate`, `info` and `scene` end to end.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <cstdint>
 #include <fstream>
 
 #include "flagsim/data/output_reader.hpp"
@@ -190,9 +190,8 @@ int small_hybrid_run(const TempDir& dir, const std::string& name) {
 TEST(SceneCommand, PrintsTheSceneWithItsOverrides) {
   TempDir dir;
   dir.write("windy.toml", kWindy);
-  const ProcessResult printed =
-      run_flag_sim({"scene", "windy.toml", "--set", "flag.fine=[5,7]", "--set", "seed=9"},
-                   dir.path());
+  const ProcessResult printed = run_flag_sim(
+      {"scene", "windy.toml", "--set", "flag.fine=[5,7]", "--set", "seed=9"}, dir.path());
   ASSERT_EQ(printed.exit_code, 2) << "seed is scene.seed";  // a key in no table is an error
   const ProcessResult effective = run_flag_sim(
       {"scene", "windy.toml", "--set", "flag.fine=[5,7]", "--set", "scene.seed=9"}, dir.path());
@@ -215,7 +214,8 @@ TEST(Version, NamesTheLibraries) {
   const ProcessResult version = run_flag_sim({"--version"});
   ASSERT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.out.rfind("flag-sim ", 0), 0u) << version.out;
-  for (const char* library : {"HDF5 1.", "Bullet 3.", "Eigen 3.", "Mesa", "toml++ ", "fmt ", "CLI11 "})
+  for (const char* library :
+       {"HDF5 1.", "Bullet 3.", "Eigen 3.", "Mesa", "toml++ ", "fmt ", "CLI11 "})
     EXPECT_NE(version.out.find(library), std::string::npos) << library << "\n" << version.out;
 }
 
@@ -231,7 +231,8 @@ TEST(Plot, DrawsTheStatisticsOfARun) {
   png.read(header.data(), 24);
   EXPECT_EQ(header.substr(1, 3), "PNG");
   const auto be32 = [&](int at) {
-    return (unsigned(std::uint8_t(header[at])) << 24) | (unsigned(std::uint8_t(header[at + 1])) << 16) |
+    return (unsigned(std::uint8_t(header[at])) << 24) |
+           (unsigned(std::uint8_t(header[at + 1])) << 16) |
            (unsigned(std::uint8_t(header[at + 2])) << 8) | unsigned(std::uint8_t(header[at + 3]));
   };
   EXPECT_EQ(be32(16), 900u);  // IHDR width

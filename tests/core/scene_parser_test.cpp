@@ -120,8 +120,9 @@ TEST(SceneParser, OutputFieldsAreNamesFromTheirList) {
   EXPECT_NE(error_of(std::string(kMinimal) + "[output]\nfields = [\"strain\", \"strain\"]\n")
                 .find("\"strain\" is listed twice"),
             std::string::npos);
-  EXPECT_NE(error_of(std::string(kMinimal) + "[output]\nfields = \"strain\"\n").find("expected an array"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(std::string(kMinimal) + "[output]\nfields = \"strain\"\n").find("expected an array"),
+      std::string::npos);
 }
 
 TEST(SceneParser, KeyInTheWrongTableIsPointedToItsHome) {

@@ -16,7 +16,8 @@ namespace flagsim::physics {
 
 class BendingSprings final : public ForceTerm {
  public:
-  /// @param rigidity_j  D, N m (= J): moment per unit width per unit curvature ([bending] stiffness)
+  /// @param rigidity_j  D, N m (= J): moment per unit width per unit curvature ([bending]
+  /// stiffness)
   BendingSprings(const ClothModel& model, double rigidity_j);
   std::string_view name() const override { return "bending"; }
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,

@@ -39,8 +39,9 @@ struct RunStatus {
   bool interrupted() const { return state == RunState::kInterrupted; }
   /// The process's exit code for a run that ended so (contract: "Exit codes").
   ExitCode exit_code() const {
-    return diverged() ? ExitCode::kDiverged
-                      : interrupted() ? ExitCode::kInterrupted : ExitCode::kSuccess;
+    return diverged()      ? ExitCode::kDiverged
+           : interrupted() ? ExitCode::kInterrupted
+                           : ExitCode::kSuccess;
   }
 };
 

@@ -73,7 +73,7 @@ struct FrameFields {
   std::span<const Vec3> positions_m;     ///< /frames/positions, m
   std::span<const Vec3> velocities_m_s;  ///< /frames/velocity, m/s (when RunInfo::fields has it)
   std::span<const float> strain;  ///< /frames/strain: each node's largest link strain, 1 (ditto)
-  std::span<const Vec3> coarse_m = {};   ///< [Jc*Kc] /coarse/positions, when RunInfo named them
+  std::span<const Vec3> coarse_m = {};  ///< [Jc*Kc] /coarse/positions, when RunInfo named them
 };
 
 class FrameWriter {

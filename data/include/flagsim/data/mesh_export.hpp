@@ -18,8 +18,8 @@ namespace flagsim::data {
 /// PC2 ("POINTCACHE2\0" header, little-endian): char[12] signature, int32
 /// version 1, int32 points, float32 start frame, float32 sample rate (frames
 /// between samples), int32 samples; then samples x points x float32 xyz.
-inline constexpr char kPc2Signature[12] = {'P', 'O', 'I', 'N', 'T', 'C', 'A',
-                                           'C', 'H', 'E', '2', '\0'};
+inline constexpr char kPc2Signature[12] = {'P', 'O', 'I', 'N', 'T', 'C',
+                                           'A', 'C', 'H', 'E', '2', '\0'};
 inline constexpr std::size_t kPc2HeaderBytes = 32;
 
 class Pc2Writer {

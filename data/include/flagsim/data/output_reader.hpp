@@ -34,7 +34,8 @@ class OutputReader {
   std::vector<Vec3> positions(int frame) const;
   /// Velocities of frame t, [J*K] m/s; empty in files written before /frames/velocity.
   std::vector<Vec3> velocities(int frame) const;
-  /// Each node's largest link strain in frame t, [J*K]; empty in files written before /frames/strain.
+  /// Each node's largest link strain in frame t, [J*K]; empty in files written before
+  /// /frames/strain.
   std::vector<double> node_strain(int frame) const;
   std::vector<Vec3> rest_positions() const;
   /// Hybrid runs: positions of the coarse nodes at frame t [Jc*Kc] and their

@@ -73,7 +73,7 @@ class FrameRenderer {
   RenderOptions options_;
   unsigned texture_id_ = 0;
   std::vector<float> vertices_, normals_, colors_;  ///< [3 J K] this frame's, for GL
-  std::vector<unsigned> triangles_;        ///< the mesh's indices, kept between frames
+  std::vector<unsigned> triangles_;                 ///< the mesh's indices, kept between frames
   int triangle_rows_ = 0, triangle_cols_ = 0;
 };
 
