@@ -26,6 +26,18 @@ std::vector<char> bytes(const std::string& path) {
   return std::vector<char>(std::istreambuf_iterator<char>(in), {});
 }
 
+// `render ARGS -o bad --size 160x90` is exit 2, its message holds `words`,
+// and it leaves no `bad`.
+void expect_render_refused(const TempDir& dir, const std::vector<std::string>& args,
+                           const std::string& words) {
+  std::vector<std::string> command = {"render", "-o", "bad", "--size", "160x90"};
+  command.insert(command.end(), args.begin(), args.end());
+  const ProcessResult result = run_flag_sim(command, dir.path());
+  EXPECT_EQ(result.exit_code, 2) << words;
+  EXPECT_NE(result.err.find(words), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(dir.file("bad"))) << words;
+}
+
 TEST(Render, RunRenderWritesTheFileAndOnePngPerFrame) {
   TempDir dir;
   std::vector<std::string> args = kSmallRun;
@@ -163,12 +175,9 @@ TEST(Render, AFrameRangeAndACameraView) {
            {{"--eye", "1,2,2e5"}, "each coordinate within"},
            {{"--target", "1,2,3"}, "--target 1,2,3: goes with --eye"},
            {{"--eye", "1,2,3", "--camera", "side"}, "give --eye or --camera side, not both"}}) {
-    std::vector<std::string> command = {"render", "r.h5", "-o", "bad", "--size", "160x90"};
+    std::vector<std::string> command = {"r.h5"};
     command.insert(command.end(), args.begin(), args.end());
-    const ProcessResult result = run_flag_sim(command, dir.path());
-    EXPECT_EQ(result.exit_code, 2) << words;
-    EXPECT_NE(result.err.find(words), std::string::npos) << result.err;
-    EXPECT_FALSE(fs::exists(dir.file("bad"))) << words;
+    expect_render_refused(dir, command, words);
   }
 }
 
@@ -205,14 +214,8 @@ TEST(Render, ColouredByAPerNodeField) {
            {{"bare.h5", "--color", "strain"}, "bare.h5 has no /frames/strain"},
            {{"bare.h5", "--color", "speed"}, "bare.h5 has no /frames/velocity"},
            {{"r.h5", "--color", "heat"}, "--color heat: expected \"strain\" or \"speed\""},
-           {{"r.h5", "--color", "strain", "--style", "wireframe"}, "colours the shaded style"}}) {
-    std::vector<std::string> command = {"render", "-o", "bad", "--size", "160x90"};
-    command.insert(command.end(), args.begin(), args.end());
-    const ProcessResult result = run_flag_sim(command, dir.path());
-    EXPECT_EQ(result.exit_code, 2) << words;
-    EXPECT_NE(result.err.find(words), std::string::npos) << result.err;
-    EXPECT_FALSE(fs::exists(dir.file("bad"))) << words;
-  }
+           {{"r.h5", "--color", "strain", "--style", "wireframe"}, "colours the shaded style"}})
+    expect_render_refused(dir, args, words);
 }
 
 }  // namespace
