@@ -98,7 +98,7 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress*
   Scene full = scene;
   full.mode = Mode::kMassSpring;
   physics::SpringDamperSolver solver(full);
-  physics::ClothState state = solver.initial_state(full.seed);
+  physics::ClothState state = solver.initial_state();
   RunRecord record;
   record.lattice = solver.model().lattice;
   record.fps = full.fps;

@@ -12,8 +12,8 @@
 #include <cmath>
 #include <limits>
 
+#include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/force_terms.hpp"
-#include "flagsim/coarse_physics/initial_shape.hpp"
 #include "flagsim/core/stop_request.hpp"
 
 namespace flagsim::physics {
@@ -116,7 +116,7 @@ BulletCloth::BulletCloth(const Scene& scene)
     materials.emplace_back(klst, material);
     return material;
   };
-  const int iterations = std::max(1, scene.solver.iterations);
+  const int iterations = scene.solver.iterations.value_or(10);
   for (const LinkFamily& family : model_.links)
     for_each_link(model_, family, [&](std::size_t a, std::size_t b, double k, double) {
       const double w = inverse_mass(a) + inverse_mass(b);
@@ -138,16 +138,8 @@ BulletCloth::BulletCloth(const Scene& scene)
   world.setInternalTickCallback(&pre_tick, this, /*isPreTick=*/true);
 
   // The start: rest plus the scene's seeded perturbation (free nodes only).
-  state_.x_m = rest_m_;
-  state_.v_m_s.assign(n, Vec3::Zero());
-  if (scene.flag.initial_perturbation_m > 0.0) {
-    const std::vector<double> z =
-        smooth_perturbation(model_.lattice, scene.seed, scene.flag.initial_perturbation_m);
-    for (std::size_t i = 0; i < n; ++i)
-      if (!model_.pinned[i]) state_.x_m[i].z() += z[i];
-  }
+  state_ = initial_state(scene, model_);
   for (std::size_t i = 0; i < n; ++i) {
-    if (model_.pinned[i]) state_.v_m_s[i] = pins_.velocity_m_s(0.0);
     btSoftBody::Node& node = body.m_nodes[int(i)];
     node.m_x = node.m_q = to_bt(state_.x_m[i]);
     node.m_v = to_bt(state_.v_m_s[i]);

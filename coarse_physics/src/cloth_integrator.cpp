@@ -1,6 +1,8 @@
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 
 #include "flagsim/coarse_physics/bullet_cloth.hpp"
+#include "flagsim/coarse_physics/implicit_euler.hpp"
+#include "flagsim/coarse_physics/xpbd.hpp"
 
 namespace flagsim::physics {
 
@@ -15,6 +17,8 @@ double ClothIntegrator::kinetic_energy() const {
 
 std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene) {
   if (scene.solver.backend == "bullet") return std::make_unique<BulletCloth>(scene);
+  if (scene.solver.backend == "implicit") return std::make_unique<ImplicitEuler>(scene);
+  if (scene.solver.backend == "xpbd") return std::make_unique<Xpbd>(scene);
   return std::make_unique<SpringDamperIntegrator>(scene);
 }
 

@@ -18,7 +18,7 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
                                                          TermSelection selection) {
   std::vector<std::unique_ptr<ForceTerm>> terms;
   if (selection.stretch) terms.push_back(std::make_unique<StretchSprings>(model));
-  if (scene.bending)
+  if (scene.bending && selection.bending)
     terms.push_back(std::make_unique<BendingSprings>(model, scene.bending->rigidity_j));
   if (scene.gravity && selection.gravity)
     terms.push_back(

@@ -4,6 +4,9 @@
 #include <numbers>
 #include <random>
 
+#include "flagsim/coarse_physics/cloth_state.hpp"
+#include "flagsim/coarse_physics/pin_motion.hpp"
+
 namespace flagsim::physics {
 namespace {
 
@@ -38,6 +41,23 @@ std::vector<double> smooth_perturbation(const Lattice& lattice, std::uint64_t se
     }
   }
   return z;
+}
+
+ClothState initial_state(const Scene& scene, const ClothModel& model) {
+  ClothState state;
+  state.x_m = model.lattice.rest_positions();
+  const std::size_t n = state.x_m.size();
+  state.v_m_s.assign(n, Vec3::Zero());
+  if (scene.flag.initial_perturbation_m > 0.0) {
+    const std::vector<double> z =
+        smooth_perturbation(model.lattice, scene.seed, scene.flag.initial_perturbation_m);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!model.pinned[i]) state.x_m[i].z() += z[i];
+  }
+  const Vec3 pin_velocity = PinMotion(scene.pole).velocity_m_s(0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (model.pinned[i]) state.v_m_s[i] = pin_velocity;
+  return state;
 }
 
 }  // namespace flagsim::physics

@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "flagsim/coarse_physics/force_terms.hpp"
-#include "flagsim/coarse_physics/initial_shape.hpp"
 #include "flagsim/core/stop_request.hpp"
 
 namespace flagsim::physics {
 
 SpringDamperSolver::SpringDamperSolver(const Scene& scene)
-    : model_(make_cloth_model(scene)), pins_(scene.pole), flag_(scene.flag) {
+    : model_(make_cloth_model(scene)),
+      pins_(scene.pole),
+      initial_(physics::initial_state(scene, model_)) {
   rest_m_ = model_.lattice.rest_positions();
   inverse_mass_.resize(model_.mass_kg.size());
   for (std::size_t i = 0; i < inverse_mass_.size(); ++i) inverse_mass_[i] = 1.0 / model_.mass_kg[i];
@@ -24,21 +25,6 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
   stable_substep_s_ = explicit_stability_limit(model_, terms_);
   substeps_per_frame_ =
       physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
-}
-
-ClothState SpringDamperSolver::initial_state(std::uint64_t seed) const {
-  ClothState state;
-  state.x_m = rest_m_;
-  state.v_m_s.assign(rest_m_.size(), Vec3::Zero());
-  if (flag_.initial_perturbation_m > 0.0) {
-    const std::vector<double> z =
-        smooth_perturbation(model_.lattice, seed, flag_.initial_perturbation_m);
-    for (std::size_t i = 0; i < z.size(); ++i)
-      if (!model_.pinned[i]) state.x_m[i].z() += z[i];
-  }
-  for (std::size_t i = 0; i < rest_m_.size(); ++i)
-    if (model_.pinned[i]) state.v_m_s[i] = pins_.velocity_m_s(0.0);
-  return state;
 }
 
 void SpringDamperSolver::register_stages(StageTimes& times) {

@@ -22,6 +22,10 @@ const char* to_string(Mode mode) {
       return "mass-spring";
     case Mode::kBullet:
       return "bullet";
+    case Mode::kImplicit:
+      return "implicit";
+    case Mode::kXpbd:
+      return "xpbd";
     case Mode::kInfill:
       return "infill";
   }
@@ -46,6 +50,22 @@ const char* to_string(PinSet pin) {
 
 const char* to_string(InfillSolverKind kind) {
   return kind == InfillSolverKind::kSmooth ? "smooth" : "paper";
+}
+
+std::string backend_of(const Scene& scene) {
+  switch (scene.mode) {
+    case Mode::kHybrid:
+      return scene.solver.backend;
+    case Mode::kMassSpring:
+      return "spring-damper";
+    case Mode::kInfill:
+      return "";
+    case Mode::kBullet:
+    case Mode::kImplicit:
+    case Mode::kXpbd:
+      return to_string(scene.mode);
+  }
+  return "";
 }
 
 InfillSolverKind infill_solver_of(const Scene& scene) {

@@ -93,12 +93,12 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
         "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
     scene.keyframes.clear();
   }
-  if (scene.mode == Mode::kMassSpring && scene.infill) {
+  if (is_full_lattice(scene.mode) && scene.infill) {
     unused_table("infill",
                  "[infill] settings need a mode with the infill (\"hybrid\" or \"infill\")");
     scene.infill.reset();
   }
-  if (scene.mode == Mode::kMassSpring && scene.wrinkles) {
+  if (is_full_lattice(scene.mode) && scene.wrinkles) {
     unused_table("wrinkles",
                  "wrinkles are made by the infill (paper 3.5); they need scene.mode = \"hybrid\" "
                  "or \"infill\"");

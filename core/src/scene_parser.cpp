@@ -171,9 +171,9 @@ std::string apply_override(toml::table& root, const Override& override) {
 }
 
 Mode parse_mode(const std::string& text) {
-  if (text == "hybrid") return Mode::kHybrid;
-  if (text == "bullet") return Mode::kBullet;
-  if (text == "infill") return Mode::kInfill;
+  for (Mode mode : {Mode::kHybrid, Mode::kMassSpring, Mode::kBullet, Mode::kImplicit, Mode::kXpbd,
+                    Mode::kInfill})
+    if (text == to_string(mode)) return mode;
   return Mode::kMassSpring;
 }
 
@@ -188,8 +188,8 @@ PinSet parse_pin(const std::string& text) {
 void read_scene_table(TableReader& in, Scene& scene, std::string_view source_path) {
   std::string stem = std::filesystem::path(std::string(source_path)).stem().string();
   scene.name = in.string("name", stem.empty() ? "scene" : stem);
-  scene.mode =
-      parse_mode(in.choice("mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "infill"}));
+  scene.mode = parse_mode(in.choice(
+      "mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "implicit", "xpbd", "infill"}));
   scene.fps = in.real("fps", 30.0, Bound{0.0, limits::kFps, true}, "frames per second");
   scene.duration_s = in.real("duration", 10.0, Bound{0.0, 1.0e6, true}, "s");
   if (auto frames = in.optional_integer("frames", 1, kMaxFrames))
@@ -363,9 +363,11 @@ void read_infill_tables(TableReader& root, Scene& scene) {
 void read_run_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("solver")) {
     TableReader in(*t, "solver", root.where_of("solver"));
-    scene.solver.backend = in.choice("backend", "spring-damper", {"spring-damper", "bullet"});
+    scene.solver.backend =
+        in.choice("backend", "spring-damper", {"spring-damper", "bullet", "implicit", "xpbd"});
     scene.solver.substeps = int(in.integer("substeps", 1, 1, 1'000'000));
-    scene.solver.iterations = int(in.integer("iterations", 10, 1, 10'000));
+    if (auto iterations = in.optional_integer("iterations", 1, 10'000))
+      scene.solver.iterations = int(*iterations);
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("output")) {

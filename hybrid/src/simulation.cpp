@@ -7,7 +7,7 @@
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
-#include "flagsim/coarse_physics/initial_shape.hpp"
+#include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/keyframes.hpp"
@@ -23,16 +23,24 @@ std::vector<NamedNumber> stepping_numbers(const physics::ClothIntegrator& physic
           {"stable_substep_seconds", physics.stable_substep_s(), "s"}};
 }
 
-// The integrator that mode `mode` runs on a lattice: "mass-spring" is always
-// the spring-damper, "bullet" always Bullet, hybrid follows solver.backend.
+// The integrator the scene's mode runs (backend_of: a full-lattice mode names
+// its own, hybrid follows solver.backend).
 std::unique_ptr<physics::ClothIntegrator> integrator_for(const Scene& scene) {
   Scene chosen = scene;
-  if (scene.mode == Mode::kMassSpring) chosen.solver.backend = "spring-damper";
-  if (scene.mode == Mode::kBullet) chosen.solver.backend = "bullet";
+  chosen.solver.backend = backend_of(scene);
   return physics::make_integrator(chosen);
 }
 
-// modes "mass-spring" and "bullet": physics on the full lattice.
+// What the summary line says of an integrator's stepping.
+std::string stepping_of(const physics::ClothIntegrator& physics) {
+  std::string text = fmt::format("{} substeps/frame of {:.3g} s", physics.substeps_per_frame(),
+                                 physics.substep_s());
+  if (const std::string solver = physics.solver_summary(); !solver.empty())
+    text += fmt::format(" ({})", solver);
+  return text;
+}
+
+// The full-lattice modes (is_full_lattice): physics on every node.
 class FullLatticeSimulation final : public Simulation {
  public:
   explicit FullLatticeSimulation(const Scene& scene) : physics_(integrator_for(scene)) {}
@@ -44,10 +52,9 @@ class FullLatticeSimulation final : public Simulation {
   std::span<const Vec3> positions() const override { return physics_->state().x_m; }
   std::span<const Vec3> velocities() const override { return physics_->state().v_m_s; }
   double kinetic_energy_j() const override { return physics_->kinetic_energy(); }
-  std::string stepping_summary() const override {
-    return fmt::format("{} substeps/frame of {:.3g} s", physics_->substeps_per_frame(),
-                       physics_->substep_s());
-  }
+  std::string stepping_summary() const override { return stepping_of(*physics_); }
+  std::optional<std::string> physics_failure() const override { return physics_->failure(); }
+  std::string physics_advice() const override { return physics_->divergence_advice(); }
 
  private:
   std::unique_ptr<physics::ClothIntegrator> physics_;
@@ -80,12 +87,8 @@ class DenseInfill {
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
         mass_kg_(physics::make_cloth_model(scene).mass_kg) {
-    positions_ = lattice_.rest_positions();
-    if (scene.flag.initial_perturbation_m > 0.0) {
-      const auto z =
-          physics::smooth_perturbation(lattice_, scene.seed, scene.flag.initial_perturbation_m);
-      for (std::size_t i = 0; i < z.size(); ++i) positions_[i].z() += z[i];
-    }
+    // The same start as the physics' (free nodes perturbed, pinned ones not).
+    positions_ = physics::initial_state(scene, physics::make_cloth_model(scene)).x_m;
     previous_ = positions_;
     velocities_.assign(positions_.size(), Vec3::Zero());
   }
@@ -230,10 +233,11 @@ class HybridSimulation final : public Simulation {
     return dense_.solver().last_report();
   }
   std::string stepping_summary() const override {
-    return fmt::format("{} substeps/frame of {:.3g} s on {} x {} coarse nodes",
-                       physics_->substeps_per_frame(), physics_->substep_s(),
+    return fmt::format("{} on {} x {} coarse nodes", stepping_of(*physics_),
                        coarse_scene_.flag.fine_rows, coarse_scene_.flag.fine_cols);
   }
+  std::optional<std::string> physics_failure() const override { return physics_->failure(); }
+  std::string physics_advice() const override { return physics_->divergence_advice(); }
 
  private:
   // The coarse nodes handed to the infill are pulled in (infill::limit_stretch)
@@ -272,9 +276,12 @@ class HybridSimulation final : public Simulation {
 
 std::optional<std::string> frame_divergence(const Simulation& simulation, const Scene& scene,
                                             const StrainStats& strain) {
+  if (std::optional<std::string> failed = simulation.physics_failure()) return failed;
   std::optional<std::string> why =
       divergence_reason(simulation.positions(), simulation.velocities(), strain, scene.limits);
   if (!why) return why;
+  if (const std::string advice = simulation.physics_advice(); !advice.empty())
+    *why += "; " + advice;
   if (scene.mode == Mode::kInfill && strain.max <= scene.limits.max_strain) {
     // No physics moves an infill-mode cloth: a node this fast follows the keyframes.
     double fastest = 0.0;

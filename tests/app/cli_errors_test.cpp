@@ -92,7 +92,8 @@ const std::vector<BadInput>& cases() {
        std::string(kBase).replace(std::string(kBase).find("\"mass-spring\""), 13,
                                   "\"mass_spring\""),
        {"run", "SCENE"},
-       "scene.mode: expected one of \"hybrid\", \"mass-spring\", \"bullet\", \"infill\", "
+       "scene.mode: expected one of \"hybrid\", \"mass-spring\", \"bullet\", \"implicit\", "
+       "\"xpbd\", \"infill\", "
        "got \"mass_spring\" (did you mean \"mass-spring\"?)"},
       {"bad_pin", with("pin = \"middle\"\n"), {"run", "SCENE"}, "flag.pin: expected one of"},
       {"pole_without_pins",
@@ -121,7 +122,8 @@ const std::vector<BadInput>& cases() {
       {"unknown_backend",
        kBase,
        {"run", "SCENE", "--set", "solver.backend=bulet"},
-       "solver.backend: expected one of \"spring-damper\", \"bullet\", got \"bulet\""},
+       "solver.backend: expected one of \"spring-damper\", \"bullet\", \"implicit\", \"xpbd\", got "
+       "\"bulet\""},
       {"infill_mode_with_wind",
        "[scene]\nmode = \"infill\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\nfine = [9, 13]\n"
        "[wind]\nvelocity = [1, 0, 0]\n[[keyframe]]\ntime = 0.0\ncorners = "

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
@@ -61,10 +62,10 @@ TEST(Hybrid, CoarseNodesAreWrittenAndTheDenseLatticeFollowsThem) {
   for (double converged : reader.stat("infill_converged")) EXPECT_EQ(converged, 1.0);
 }
 
-TEST(Hybrid, SameSeedSameBytesWithEitherBackend) {
+TEST(Hybrid, SameSeedSameBytesWithEveryBackend) {
   // Everything but the wall-clock stage times: dense and coarse positions,
   // strain and kinetic energy, bit for bit.
-  for (const char* backend : {"spring-damper", "bullet"}) {
+  for (const char* backend : {"spring-damper", "bullet", "implicit", "xpbd"}) {
     TempDir dir;
     auto args = [&](const char* file) {
       std::vector<std::string> a = with_output(file);
@@ -154,14 +155,19 @@ TEST(Hybrid, TheRelaxationCapIsThePassesAFrameMakes) {
 }
 
 TEST(Hybrid, OnlyTheStagesTheSceneCallsFor) {
-  // No [wind], no [wrinkles]: no wind stage, no step 3.5, with either backend.
+  // No [wind], no [wrinkles]: no wind stage, no step 3.5, with any backend.
   TempDir dir;
   dir.write("calm.toml",
             "[scene]\nmode = \"hybrid\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\n"
             "fine = [17, 25]\ncoarse = [9, 13]\n[gravity]\n");
   const std::vector<std::string> infill = {"infill_3.1", "infill_3.3", "infill_3.4", "checks",
                                            "output"};
-  for (const char* backend : {"spring-damper", "bullet"}) {
+  const std::map<std::string, std::vector<std::string>> physics = {
+      {"spring-damper", {"stretch", "gravity", "integrate"}},
+      {"bullet", {"bullet_step"}},
+      {"implicit", {"stretch", "gravity", "newton_matrix", "linear_solve"}},
+      {"xpbd", {"gravity", "constraints", "integrate"}}};
+  for (const auto& [backend, physics_stages] : physics) {
     ASSERT_EQ(run_flag_sim({"run", "calm.toml", "-o", "c.h5", "--quiet", "--set",
                             std::string("solver.backend=") + backend},
                            dir.path())
@@ -169,13 +175,43 @@ TEST(Hybrid, OnlyTheStagesTheSceneCallsFor) {
               0);
     const data::OutputReader reader(dir.file("c.h5"));
     EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,damping,infill") << backend;
-    std::vector<std::string> stages =
-        std::string(backend) == "bullet"
-            ? std::vector<std::string>{"bullet_step"}
-            : std::vector<std::string>{"stretch", "gravity", "integrate"};
+    std::vector<std::string> stages = physics_stages;
     stages.insert(stages.end(), infill.begin(), infill.end());
     EXPECT_EQ(reader.stage_names(), stages) << backend;
   }
+}
+
+TEST(FullLattice, ImplicitAndXpbdModesRunAndRecordTheirStepping) {
+  for (const char* mode : {"implicit", "xpbd"}) {
+    TempDir dir;
+    const ProcessResult result =
+        run_flag_sim({"run", "--mode", mode, "--set", "flag.fine=[9,13]", "--set",
+                      "solver.substeps=40", "--frames", "10", "--quiet", "-o", "f.h5"},
+                     dir.path());
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const data::OutputReader reader(dir.file("f.h5"));
+    EXPECT_EQ(reader.attribute("mode"), mode);
+    EXPECT_EQ(reader.attribute("effects"), "stretch,gravity,wind,damping");
+    EXPECT_EQ(reader.number_attribute("substeps_per_frame", 0), 40.0) << mode;
+    EXPECT_TRUE(reader.coarse_positions(0).empty());
+    for (double strain : reader.stat("max_strain")) EXPECT_LT(strain, 0.05) << mode;
+  }
+}
+
+TEST(FullLattice, XpbdPastItsStepCountDivergesSayingWhatToRaise) {
+  // The default flag at 33 x 49 with the wind's minimum of 13 XPBD substeps a
+  // frame: one constraint pass cannot hold the links (43% strain by frame 7).
+  TempDir dir;
+  const ProcessResult result = run_flag_sim(
+      {"run", "--mode", "xpbd", "--set", "flag.fine=[33,49]", "--frames", "31", "-o", "x.h5"},
+      dir.path());
+  EXPECT_EQ(result.exit_code, 3) << result.err;
+  EXPECT_NE(result.err.find("diverged"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("raise solver.substeps (now 13 a frame)"), std::string::npos)
+      << result.err;
+  const data::OutputReader reader(dir.file("x.h5"));
+  EXPECT_GT(reader.frame_count(), 1);  // the good frames are kept
+  EXPECT_EQ(reader.attribute("status"), "diverged");
 }
 
 TEST(Bullet, FullLatticeModeRunsAndRecordsItsStepping) {

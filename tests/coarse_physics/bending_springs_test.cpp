@@ -37,5 +37,13 @@ TEST(BendingSprings, EnergyMatchesContinuumAtAnyResolution) {
   }
 }
 
+TEST(BendingSprings, HessianIsMinusForceJacobian) {
+  const ClothModel model = make_cloth_model(test::small_cloth(4, 5));
+  BendingSprings bending(model, 0.02);
+  const std::vector<Vec3> x = test::jiggled(model.lattice, 0.05, 5);
+  test::expect_derivative_is_minus_force_jacobian(bending, x, std::vector<Vec3>(x.size()),
+                                                  test::Wrt::kPosition);
+}
+
 }  // namespace
 }  // namespace flagsim::physics

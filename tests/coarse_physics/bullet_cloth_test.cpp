@@ -25,42 +25,13 @@ TEST(BulletLinkStiffness, SharesTheSpringsFractionAmongThePasses) {
   EXPECT_DOUBLE_EQ(bullet_link_stiffness(0.3, 0), 0.3);  // no passes is read as one
 }
 
-// A soft cloth hanging under its own weight: ~1 cm of elastic stretch, 2.6% at
-// the top edge. (Bullet's link projection softens by about strain/2: at 8% top
-// strain its sag is 8% short of the spring's.)
-Scene hanging_cloth(const char* backend, PinSet pin) {
-  Scene scene = test::small_cloth(7, 9);
-  scene.flag.pin = pin;
-  scene.flag.stretch_modulus_n_m = 60.0;
-  scene.flag.shear_modulus_n_m = 6.0;
-  scene.flag.damping_per_s = 3.0;
-  scene.gravity = Gravity{};
-  scene.fps = 10.0;
-  scene.solver.backend = backend;
-  return scene;
-}
-
-// Largest drop of a node below its rest height once the cloth is at rest, m.
-double settled_sag(const Scene& scene) {
-  auto physics = make_integrator(scene);
-  for (int frame = 0; frame < 150; ++frame) physics->advance_frame(nullptr);  // 15 s
-  double fastest = 0.0;
-  for (const Vec3& v : physics->state().v_m_s) fastest = std::max(fastest, v.norm());
-  EXPECT_LT(fastest, 1e-2) << scene.solver.backend << ": not at rest";
-  const auto rest = physics->model().lattice.rest_positions();
-  double sag = 0.0;
-  for (std::size_t i = 0; i < rest.size(); ++i)
-    sag = std::max(sag, rest[i].y() - physics->state().x_m[i].y());
-  return sag;
-}
-
 // The README's figures: measured 1.58% apart pinned along the top (9.47 vs
 // 9.32 mm) and 0.24% by the corners (53.89 vs 53.76 mm), each held to a
 // little more than that.
 TEST(BulletCloth, HangsWithTheSameSagAsTheSpringDamper) {
   for (const auto& [pin, tolerance] : {std::pair{PinSet::kTop, 0.02}, {PinSet::kCorners, 0.004}}) {
-    const double spring = settled_sag(hanging_cloth("spring-damper", pin));
-    const double bullet = settled_sag(hanging_cloth("bullet", pin));
+    const double spring = test::settled_sag(test::hanging_cloth("spring-damper", pin));
+    const double bullet = test::settled_sag(test::hanging_cloth("bullet", pin));
     EXPECT_GT(spring, 0.005) << to_string(pin);  // the elastic stretch is what is compared
     EXPECT_NEAR(bullet, spring, tolerance * spring) << to_string(pin);
     std::printf("%s: spring-damper sag %.5f m, bullet %.5f m\n", to_string(pin), spring, bullet);

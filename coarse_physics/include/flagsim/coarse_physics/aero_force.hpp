@@ -34,6 +34,13 @@ namespace flagsim::physics {
 Vec3 triangle_aero_force(const Vec3& x0, const Vec3& x1, const Vec3& x2,
                          const Vec3& relative_velocity, const Wind& wind);
 
+/// dF/du of triangle_aero_force for the same arguments, N s/m: the wind's
+/// velocity derivative (the air's velocity relative to the triangle is u, so a
+/// node's velocity enters with -1/3). Drag's part is 1/2 rho C_d (2 |u.c| / |c|^2) c c^T / 2,
+/// positive semidefinite; lift's part is not symmetric.
+Mat3 triangle_aero_velocity_jacobian(const Vec3& x0, const Vec3& x1, const Vec3& x2,
+                                     const Vec3& relative_velocity, const Wind& wind);
+
 class AeroForce final : public ForceTerm {
  public:
   /// @param cloth_speed_bound_m_s  an estimate of the largest node speed (pole
@@ -45,12 +52,25 @@ class AeroForce final : public ForceTerm {
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                   std::span<Vec3> forces_n) const override;
   double velocity_rate_bound() const override;
+  /// Keeps C_t = -d f_node / d v_node' = J_t / 9 of every triangle t (J_t its
+  /// triangle_aero_velocity_jacobian; the same block for each of its 3 x 3 node
+  /// pairs). kProjected keeps the symmetric part with negative eigenvalues
+  /// clamped to 0. The position derivative is not kept: the wind is not
+  /// conservative and the implicit stepper treats its change with x explicitly.
+  void linearize(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s, Definiteness how) override;
+  void add_damping_product(std::span<const Vec3> dv_m_s, std::span<Vec3> out_n) const override;
+  void add_damping_diagonal(std::span<Mat3> diagonal_n_s_m) const override;
 
  private:
+  /// Calls visit(a, b, c) for every triangle, in the order of damping_.
+  template <typename Visit>
+  void for_each_triangle(Visit&& visit) const;
+
   const Lattice& lattice_;
   Wind wind_;
   WindField field_;
   std::vector<Vec3> air_m_s_;  ///< [J*K] air velocity at the nodes this frame
+  std::vector<Mat3> damping_;  ///< [2 (J-1)(K-1)] C_t at the last linearization, N s/m
   double areal_density_kg_m2_;
   double cloth_speed_bound_m_s_;
 };

@@ -9,10 +9,23 @@
 // |x_a - 2 x_b + x_c| = curvature * s^2, so E = 1/2 D curvature^2 * (s w): the
 // continuum bending energy of the cloth the triple covers, at any resolution.
 // The energy is quadratic in x, so its stiffness is exact and constant.
+#include <cstdint>
+#include <vector>
+
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
 
 namespace flagsim::physics {
+
+/// One bending triple (a, b, c) of consecutive nodes of a row or column, and its k_b, N/m.
+struct BendingTriple {
+  std::uint32_t a = 0, b = 0, c = 0;
+  double k_n_m = 0.0;
+};
+
+/// Every row triple (row by row), then every column triple, of `lattice` for
+/// rigidity D = `rigidity_j` N m (k_b as above, halved on the border fibers).
+std::vector<BendingTriple> bending_triples(const Lattice& lattice, double rigidity_j);
 
 class BendingSprings final : public ForceTerm {
  public:
@@ -24,14 +37,12 @@ class BendingSprings final : public ForceTerm {
                   std::span<Vec3> forces_n) const override;
   double energy(std::span<const Vec3> x_m) const override;
   void add_stiffness_bound(std::span<double> row_sum_n_m) const override;
+  /// The Hessian is constant: k (1, -2, 1)^T (1, -2, 1) (x) I per triple.
+  void add_stiffness_product(std::span<const Vec3> dx_m, std::span<Vec3> out_n) const override;
+  void add_stiffness_diagonal(std::span<Mat3> diagonal_n_m) const override;
 
  private:
-  template <typename Visit>
-  void for_each_triple(Visit&& visit) const;
-
-  const Lattice& lattice_;
-  double k_row_ = 0.0;  ///< k_b of an interior row triple, N/m
-  double k_col_ = 0.0;  ///< k_b of an interior column triple, N/m
+  std::vector<BendingTriple> triples_;
 };
 
 }  // namespace flagsim::physics

@@ -1,11 +1,12 @@
 #pragma once
 // What advances a cloth in time, whichever backend does it (contract:
-// solver.backend): our spring-damper integrator or Bullet's soft body. Both
-// build the same cloth from a scene (ClothModel: masses from the area a node
-// stands for, link stiffness from the stretch and shear moduli and the spacing)
-// and own their state, which starts at rest plus the scene's seeded
-// perturbation.
+// solver.backend): our explicit spring-damper integrator, Bullet's soft body,
+// backward Euler (implicit_euler.hpp) or XPBD (xpbd.hpp). All build the same
+// cloth from a scene (ClothModel: masses from the area a node stands for, link
+// stiffness from the stretch and shear moduli and the spacing) and own their
+// state, which starts as physics::initial_state.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,17 @@ class ClothIntegrator {
   virtual void register_stages(StageTimes& times) = 0;
   /// Advances by one output frame (1/fps).
   virtual void advance_frame(StageTimes* times) = 0;
+  /// Why the last frame's stepping cannot be trusted though its state may
+  /// look sound (a linear solve that did not converge), with what to change;
+  /// nullopt when it can. The run ends such a frame as diverged.
+  virtual std::optional<std::string> failure() const { return std::nullopt; }
+  /// What a diverged run's reason adds for this backend: the setting that
+  /// buys it stability or accuracy ("raise solver.substeps (now 80)"); empty
+  /// where the generic advice is the whole story.
+  virtual std::string divergence_advice() const { return {}; }
+  /// What the summary line adds about the solver ("1 Newton iteration, 84 CG
+  /// iterations a substep at most"); empty for nothing.
+  virtual std::string solver_summary() const { return {}; }
   /// Kinetic energy, J.
   double kinetic_energy() const;
 };
@@ -43,7 +55,7 @@ std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene);
 class SpringDamperIntegrator final : public ClothIntegrator {
  public:
   explicit SpringDamperIntegrator(const Scene& scene)
-      : solver_(scene), state_(solver_.initial_state(scene.seed)) {}
+      : solver_(scene), state_(solver_.initial_state()) {}
   const ClothModel& model() const override { return solver_.model(); }
   const std::vector<std::string>& effects() const override { return solver_.effects(); }
   const ClothState& state() const override { return state_; }

@@ -4,12 +4,31 @@
 //
 // Shapes: positions x [J*K] in m, velocities v [J*K] in m/s, forces [J*K] in N,
 // all row-major over the lattice.
+//
+// Besides its force, a term gives what each stepper needs of it: its energy
+// (conservative terms), a stiffness bound (the explicit steppers' stability
+// limit) and its derivatives at a state (the implicit stepper's Newton matrix,
+// as products and 3x3 diagonal blocks, never assembled).
+#include <Eigen/Core>
 #include <span>
 #include <string_view>
 
 #include "flagsim/core/vec3.hpp"
 
 namespace flagsim::physics {
+
+using Mat3 = Eigen::Matrix3d;
+
+/// How linearize() keeps a term's derivatives.
+enum class Definiteness {
+  kExact,      ///< -df/dx and -df/dv as they are (the finite-difference tests)
+  kProjected,  ///< each element's block made positive semidefinite, so that the
+               ///< implicit stepper's matrix M + h C + h^2 K is symmetric positive
+               ///< definite; what is dropped (a compressed link's negative
+               ///< transverse stiffness, the wind's non-dissipative lift
+               ///< response) stays in the residual, so Newton's fixed point is
+               ///< unchanged and only its convergence rate is
+};
 
 class ForceTerm {
  public:
@@ -31,6 +50,23 @@ class ForceTerm {
   virtual void add_stiffness_bound(std::span<double> /*row_sum_n_m*/) const {}
   /// Upper bound of ||d f_i / d v_i|| / m_i over the nodes, 1/s.
   virtual double velocity_rate_bound() const { return 0.0; }
+
+  /// Evaluates and keeps the derivatives at (x, v) that the products below
+  /// use (the implicit stepper calls it once per Newton iteration).
+  virtual void linearize(std::span<const Vec3> /*x_m*/, std::span<const Vec3> /*v_m_s*/,
+                         Definiteness /*how*/) {}
+  /// out += K dx with K = -df/dx (N/m; the energy's Hessian for a conservative
+  /// term) at the last linearization. A term that has no position derivative
+  /// in the implicit matrix (the wind's: it is not conservative) adds nothing.
+  virtual void add_stiffness_product(std::span<const Vec3> /*dx_m*/,
+                                     std::span<Vec3> /*out_n*/) const {}
+  /// diagonal[i] += K_ii, N/m.
+  virtual void add_stiffness_diagonal(std::span<Mat3> /*diagonal_n_m*/) const {}
+  /// out += C dv with C = -df/dv (N s/m) at the last linearization.
+  virtual void add_damping_product(std::span<const Vec3> /*dv_m_s*/,
+                                   std::span<Vec3> /*out_n*/) const {}
+  /// diagonal[i] += C_ii, N s/m.
+  virtual void add_damping_diagonal(std::span<Mat3> /*diagonal_n_s_m*/) const {}
 };
 
 }  // namespace flagsim::physics

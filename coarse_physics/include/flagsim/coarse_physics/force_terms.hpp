@@ -1,5 +1,5 @@
 #pragma once
-// The pipeline of force terms a scene calls for, shared by both backends: a
+// The pipeline of force terms a scene calls for, shared by every backend: a
 // term is constructed only when the scene has its effect.
 #include <memory>
 #include <string>
@@ -16,6 +16,7 @@ namespace flagsim::physics {
 /// itself (Bullet's links for stretch, its world gravity) leaves it out.
 struct TermSelection {
   bool stretch = true;
+  bool bending = true;
   bool gravity = true;
 };
 

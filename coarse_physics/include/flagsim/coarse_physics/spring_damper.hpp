@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/core/scene.hpp"
@@ -32,13 +33,6 @@ namespace flagsim::physics {
 /// leaves room for the tension (geometric) stiffness the bound leaves out.
 inline constexpr double kStabilitySafety = 0.5;
 
-/// The mutable state: positions [J*K] m, velocities [J*K] m/s, time s.
-struct ClothState {
-  std::vector<Vec3> x_m;
-  std::vector<Vec3> v_m_s;
-  double time_s = 0.0;
-};
-
 class SpringDamperSolver {
  public:
   /// The cloth of the scene's fine lattice and the force terms its effects call for.
@@ -50,8 +44,8 @@ class SpringDamperSolver {
   /// Effects in pipeline order ("stretch,gravity,wind,damping,pole").
   const std::vector<std::string>& effects() const { return effects_; }
 
-  /// Rest state plus the scene's seeded initial perturbation (free nodes only).
-  ClothState initial_state(std::uint64_t seed) const;
+  /// The scene's start (physics::initial_state).
+  const ClothState& initial_state() const { return initial_; }
 
   /// Largest stable substep (the bound above, before the safety factor), s.
   double stable_substep_s() const { return stable_substep_s_; }
@@ -83,7 +77,7 @@ class SpringDamperSolver {
  private:
   ClothModel model_;
   PinMotion pins_;
-  FlagSpec flag_;
+  ClothState initial_;
   std::vector<Vec3> rest_m_;
   std::vector<double> inverse_mass_;
   std::vector<std::unique_ptr<ForceTerm>> terms_;

@@ -17,7 +17,13 @@
 
 namespace flagsim {
 
-enum class Mode { kHybrid, kMassSpring, kBullet, kInfill };
+enum class Mode { kHybrid, kMassSpring, kBullet, kImplicit, kXpbd, kInfill };
+
+/// The modes that simulate every node of flag.fine (the references).
+inline bool is_full_lattice(Mode mode) {
+  return mode == Mode::kMassSpring || mode == Mode::kBullet || mode == Mode::kImplicit ||
+         mode == Mode::kXpbd;
+}
 enum class PinSet { kLeft, kRight, kTop, kCorners, kNone };
 
 struct FlagSpec {
@@ -97,8 +103,10 @@ struct InfillSettings {
 
 struct Solver {
   std::string backend = "spring-damper";
-  int substeps = 1;     ///< minimum substeps per output frame
-  int iterations = 10;  ///< Bullet solver iterations
+  int substeps = 1;  ///< minimum substeps per output frame
+  /// Passes per substep: Bullet's solver iterations (default 10), Newton
+  /// iterations of "implicit" (default 1), constraint passes of "xpbd" (default 1).
+  std::optional<int> iterations;
 };
 
 struct Keyframe {
@@ -164,6 +172,11 @@ struct Scene {
 const char* to_string(Mode mode);
 const char* to_string(InfillSolverKind kind);
 /// The infill a scene runs: [infill] solver, else smooth in hybrid mode (it
+/// The physics backend the scene runs: the one its full-lattice mode names
+/// ("mass-spring" runs "spring-damper"), solver.backend in hybrid mode, "" in
+/// infill mode (no physics).
+std::string backend_of(const Scene& scene);
+
 /// follows many coarse nodes) and paper in infill mode (corners only, Figs. 9-10).
 InfillSolverKind infill_solver_of(const Scene& scene);
 /// The paper solver's 3.4 cap: [infill] relax_iterations, else the mode's default.

@@ -1,0 +1,92 @@
+#pragma once
+// Backward Euler on the spring-damper cloth (scene.mode = "implicit" on the
+// full lattice, solver.backend = "implicit" for the hybrid's coarse nodes):
+// Baraff and Witkin 1998, "Large steps in cloth simulation".
+//
+// One substep of h seconds finds the velocities v1 with
+//   M (v1 - v0) = h f(x0 + h v1, v1) - c h M v1,     x1 = x0 + h v1,
+// (c = flag.damping, the same mass-proportional damping the explicit
+// integrator applies implicitly) by Newton's method from v1 = v0: each of
+// solver.iterations (default 1) iterations solves
+//   A dv = r,  A = (1 + c h) M + h C + h^2 K,  r = h f(x0 + h v1, v1) - M ((1 + c h) v1 - v0)
+// with K = -df/dx (stretch and bending Hessians) and C = -df/dv (the wind's
+// velocity derivative), both in their positive semidefinite projection
+// (Definiteness::kProjected), so A is symmetric positive definite. One
+// iteration is Baraff and Witkin's linearised step. The solve is a conjugate
+// gradient with a 3x3 block-Jacobi preconditioner, matrix-free (each term
+// gives A's products and diagonal blocks), with the pinned nodes filtered out
+// (their rows and columns removed: their v1 puts them where the pole is at
+// t + h). It stops when |r - A dv| <= kCgTolerance |r|.
+//
+// Stability: unconditional for the linear part (a stiffer cloth or a longer
+// step only damps more); solver.substeps sets the steps per frame (default 1:
+// one step per output frame). What it costs is accuracy (numerical damping of
+// the flapping grows with h) and CG iterations, which grow with h^2 k / m (the
+// system's condition number): when the CG does not reach its tolerance in
+// kMaxCgIterations, the frame is reported as diverged, with what to change.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flagsim/coarse_physics/cloth_integrator.hpp"
+#include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/coarse_physics/pin_motion.hpp"
+
+namespace flagsim::physics {
+
+/// Relative residual at which the conjugate gradient stops.
+inline constexpr double kCgTolerance = 1e-4;
+/// Iterations after which a solve that has not reached kCgTolerance fails.
+inline constexpr int kMaxCgIterations = 4000;
+
+class ImplicitEuler final : public ClothIntegrator {
+ public:
+  explicit ImplicitEuler(const Scene& scene);
+  const ClothModel& model() const override { return model_; }
+  const std::vector<std::string>& effects() const override { return effects_; }
+  const ClothState& state() const override { return state_; }
+  /// The explicit integrator's limit for the same cloth, s (for comparison:
+  /// this stepper does not need it).
+  double stable_substep_s() const override { return explicit_limit_s_; }
+  int substeps_per_frame() const override { return substeps_; }
+  double substep_s() const override { return frame_s_ / substeps_; }
+  void register_stages(StageTimes& times) override;
+  void advance_frame(StageTimes* times) override;
+  std::optional<std::string> failure() const override { return failure_; }
+  std::string solver_summary() const override;
+  std::string divergence_advice() const override;
+
+  /// CG iterations of the last frame: the most of any one solve, and in all.
+  int cg_iterations_max() const { return cg_max_; }
+  int cg_iterations_total() const { return cg_total_; }
+
+ private:
+  void step(double dt_s, StageTimes* times);
+  /// out = A dv on the free nodes (0 on the pinned ones).
+  void apply(double dt_s, const std::vector<Vec3>& dv, std::vector<Vec3>& out);
+  /// dv with A dv = rhs by preconditioned CG; false if it did not converge.
+  bool solve(double dt_s, const std::vector<Vec3>& rhs, std::vector<Vec3>& dv);
+
+  ClothModel model_;
+  PinMotion pins_;
+  std::vector<Vec3> rest_m_;
+  std::vector<std::unique_ptr<ForceTerm>> terms_;
+  std::vector<std::string> effects_;
+  ClothState state_;
+  int newton_iterations_ = 1;
+  int substeps_ = 1;
+  double frame_s_ = 0.0;
+  double explicit_limit_s_ = 0.0;
+  // Work arrays [J*K], kept between steps.
+  std::vector<Vec3> x0_, v0_, forces_, residual_, delta_, r_, z_, p_, ap_, scratch_;
+  std::vector<Mat3> block_inverse_;  ///< inverse diagonal blocks of A
+  std::vector<Mat3> stiffness_diagonal_, damping_diagonal_;
+  std::vector<int> term_stage_;
+  int matrix_stage_ = -1, solve_stage_ = -1;
+  int cg_max_ = 0, cg_total_ = 0;
+  double worst_relative_residual_ = 0.0;
+  std::optional<std::string> failure_;
+};
+
+}  // namespace flagsim::physics

@@ -1,0 +1,94 @@
+#pragma once
+// XPBD with small steps on the spring-damper cloth (scene.mode = "xpbd" on the
+// full lattice, solver.backend = "xpbd" for the hybrid's coarse nodes):
+// Macklin, Mueller and Chentanez 2016, "XPBD: position-based simulation of
+// compliant constrained dynamics", with the small steps of Macklin et al. 2019
+// ("Small steps in physics simulation": many substeps, one iteration each).
+//
+// The cloth's elastic energies become compliant constraints, each with
+// compliance alpha = 1/k (the same k as the spring-damper's):
+//  - every link (stretch, shear): C = |x_b - x_a| - S, scalar;
+//  - every bending triple: C = x_a - 2 x_b + x_c, a 3-vector (E = 1/2 k_b |C|^2,
+//    bending_springs.hpp).
+// One substep of h: the other forces (gravity, wind) and the damping move the
+// velocities explicitly, v <- (v + h f / m) / (1 + c h); p = x + h v (pinned
+// nodes where the pole is at t + h); the multipliers start at 0; then
+// solver.iterations (default 1) Gauss-Seidel passes over the constraints,
+// each
+//   dlambda = (-C - alpha~ lambda) / (sum_i w_i |grad_i C|^2 + alpha~),
+//   alpha~ = alpha / h^2,   p_i += w_i grad_i C dlambda,
+// in colour groups whose constraints share no node (4 link families x 2,
+// 2 bending directions x 3), so the order is fixed and each group could run in
+// parallel; finally v = (p - x) / h, x = p.
+//
+// Stability: the projection is unconditionally stable; what grows with h is
+// the error of one pass (the cloth is softer than its k and the strain larger,
+// by about alpha~'s share of the denominator), so accuracy, not stability,
+// sets solver.substeps. The explicit wind needs h * rate < 1: the substeps are
+// at least that (as in the spring-damper backend). A blow-up (the explicit wind
+// on too coarse a step) is caught by the run's divergence checks.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "flagsim/coarse_physics/cloth_integrator.hpp"
+#include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/coarse_physics/pin_motion.hpp"
+
+namespace flagsim::physics {
+
+class Xpbd final : public ClothIntegrator {
+ public:
+  /// A link constraint.
+  struct Link {
+    std::uint32_t a = 0, b = 0;
+    double rest = 0.0, compliance = 0.0;  ///< S, m; 1/k, m/N
+  };
+  /// A bending constraint.
+  struct Triple {
+    std::uint32_t a = 0, b = 0, c = 0;
+    double compliance = 0.0;  ///< 1/k_b, m/N
+  };
+  explicit Xpbd(const Scene& scene);
+  const ClothModel& model() const override { return model_; }
+  const std::vector<std::string>& effects() const override { return effects_; }
+  const ClothState& state() const override { return state_; }
+  /// The explicit terms' limit (the wind's), s; infinity if none bounds it.
+  double stable_substep_s() const override { return stable_substep_s_; }
+  int substeps_per_frame() const override { return substeps_; }
+  double substep_s() const override { return frame_s_ / substeps_; }
+  void register_stages(StageTimes& times) override;
+  void advance_frame(StageTimes* times) override;
+  std::string solver_summary() const override;
+  std::string divergence_advice() const override;
+
+  /// The constraints in colour groups, in the order they are projected.
+  const std::vector<std::vector<Link>>& link_groups() const { return link_groups_; }
+  const std::vector<std::vector<Triple>>& bending_groups() const { return bending_groups_; }
+
+ private:
+  void step(double dt_s, StageTimes* times);
+  void project(double dt_s);
+
+  ClothModel model_;
+  PinMotion pins_;
+  std::vector<Vec3> rest_m_;
+  std::vector<double> inverse_mass_;               ///< [J*K] 0 on pinned nodes, 1/kg
+  std::vector<std::unique_ptr<ForceTerm>> terms_;  ///< gravity, wind: explicit
+  std::vector<std::string> effects_;
+  ClothState state_;
+  std::vector<std::vector<Link>> link_groups_;
+  std::vector<std::vector<Triple>> bending_groups_;
+  std::vector<std::vector<double>> link_lambda_;
+  std::vector<std::vector<Vec3>> bending_lambda_;
+  std::vector<Vec3> forces_, predicted_;
+  int iterations_ = 1;
+  int substeps_ = 1;
+  double frame_s_ = 0.0;
+  double stable_substep_s_ = 0.0;
+  std::vector<int> term_stage_;
+  int project_stage_ = -1, update_stage_ = -1;
+};
+
+}  // namespace flagsim::physics

@@ -1,0 +1,171 @@
+#include "flagsim/coarse_physics/xpbd.hpp"
+
+#include <fmt/format.h>
+
+#include "flagsim/coarse_physics/bending_springs.hpp"
+#include "flagsim/coarse_physics/cloth_state.hpp"
+#include "flagsim/coarse_physics/force_terms.hpp"
+#include "flagsim/core/stop_request.hpp"
+
+namespace flagsim::physics {
+
+Xpbd::Xpbd(const Scene& scene)
+    : model_(make_cloth_model(scene)),
+      pins_(scene.pole),
+      rest_m_(model_.lattice.rest_positions()),
+      // Stretch and bending are constraints below; the rest are forces.
+      terms_(make_force_terms(scene, model_, pins_, {.stretch = false, .bending = false})),
+      effects_(physics_effects(scene, model_)),
+      state_(initial_state(scene, model_)),
+      iterations_(scene.solver.iterations.value_or(1)),
+      frame_s_(1.0 / scene.fps),
+      stable_substep_s_(explicit_stability_limit(model_, terms_)) {
+  substeps_ = physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
+  const std::size_t n = model_.lattice.node_count();
+  inverse_mass_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    inverse_mass_[i] = model_.pinned[i] ? 0.0 : 1.0 / model_.mass_kg[i];
+  forces_.assign(n, Vec3::Zero());
+
+  // Links, two colours per family: row links alternate along the row (by k),
+  // the others by row (j); no two links of one colour share a node.
+  const int cols = model_.lattice.cols;
+  for (const LinkFamily& family : model_.links) {
+    std::vector<Link> groups[2];
+    for_each_link(model_, family, [&](std::size_t a, std::size_t b, double k, double rest) {
+      if (inverse_mass_[a] + inverse_mass_[b] == 0.0 || k <= 0.0) return;  // two pins
+      const int along = family.row_step == 0 ? int(a % cols) : int(a / cols);
+      groups[along % 2].push_back({std::uint32_t(a), std::uint32_t(b), rest, 1.0 / k});
+    });
+    for (auto& group : groups)
+      if (!group.empty()) link_groups_.push_back(std::move(group));
+  }
+  // Bending triples, three colours per direction, by the centre's place along the fiber.
+  if (scene.bending) {
+    std::vector<Triple> groups[2][3];
+    for (const BendingTriple& t : bending_triples(model_.lattice, scene.bending->rigidity_j)) {
+      const bool row = t.c - t.b == 1;
+      const int along = row ? int(t.b % cols) : int(t.b / cols);
+      groups[row ? 0 : 1][along % 3].push_back({t.a, t.b, t.c, 1.0 / t.k_n_m});
+    }
+    for (auto& direction : groups)
+      for (auto& group : direction)
+        if (!group.empty()) bending_groups_.push_back(std::move(group));
+  }
+  link_lambda_.resize(link_groups_.size());
+  for (std::size_t g = 0; g < link_groups_.size(); ++g)
+    link_lambda_[g].resize(link_groups_[g].size());
+  bending_lambda_.resize(bending_groups_.size());
+  for (std::size_t g = 0; g < bending_groups_.size(); ++g)
+    bending_lambda_[g].resize(bending_groups_[g].size());
+}
+
+void Xpbd::register_stages(StageTimes& times) {
+  term_stage_.clear();
+  for (const auto& term : terms_) term_stage_.push_back(times.add(std::string(term->name())));
+  project_stage_ = times.add("constraints");
+  update_stage_ = times.add("integrate");
+}
+
+void Xpbd::advance_frame(StageTimes* times) {
+  const double dt = substep_s();
+  const double start = state_.time_s;
+  for (const auto& term : terms_) term->begin_frame(start, state_.x_m);
+  for (int s = 0; s < substeps_ && !stop_requested(); ++s) {
+    step(dt, times);
+    state_.time_s = start + (s + 1) * dt;  // frames land exactly on t = n / fps
+  }
+}
+
+void Xpbd::step(double dt_s, StageTimes* times) {
+  const double h = dt_s;
+  const double next_time = state_.time_s + h;
+  const std::size_t n = state_.x_m.size();
+  std::fill(forces_.begin(), forces_.end(), Vec3::Zero());
+  for (std::size_t t = 0; t < terms_.size(); ++t) {
+    const int stage = term_stage_.empty() ? -1 : term_stage_[t];
+    run_timed(times, stage, [&] { terms_[t]->add_forces(state_.x_m, state_.v_m_s, forces_); });
+  }
+  const Vec3 pin_offset = pins_.offset_m(next_time);
+  run_timed(times, update_stage_, [&] {
+    const double damping = 1.0 / (1.0 + model_.damping_per_s * h);
+    predicted_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (model_.pinned[i]) {
+        predicted_[i] = rest_m_[i] + pin_offset;
+      } else {
+        state_.v_m_s[i] = (state_.v_m_s[i] + (h * inverse_mass_[i]) * forces_[i]) * damping;
+        predicted_[i] = state_.x_m[i] + h * state_.v_m_s[i];
+      }
+    }
+  });
+  run_timed(times, project_stage_, [&] { project(h); });
+  run_timed(times, update_stage_, [&] {
+    const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
+    const double inverse_h = 1.0 / h;
+    for (std::size_t i = 0; i < n; ++i) {
+      state_.v_m_s[i] =
+          model_.pinned[i] ? pin_velocity : Vec3((predicted_[i] - state_.x_m[i]) * inverse_h);
+      state_.x_m[i] = predicted_[i];
+    }
+  });
+  state_.time_s = next_time;
+}
+
+void Xpbd::project(double dt_s) {
+  const double inverse_h2 = 1.0 / (dt_s * dt_s);
+  std::vector<Vec3>& p = predicted_;
+  const std::vector<double>& w = inverse_mass_;
+  for (auto& lambda : link_lambda_) std::fill(lambda.begin(), lambda.end(), 0.0);
+  for (auto& lambda : bending_lambda_) std::fill(lambda.begin(), lambda.end(), Vec3::Zero());
+  for (int iteration = 0; iteration < iterations_; ++iteration) {
+    for (std::size_t g = 0; g < link_groups_.size(); ++g) {
+      const std::vector<Link>& group = link_groups_[g];
+      std::vector<double>& lambda = link_lambda_[g];
+      for (std::size_t l = 0; l < group.size(); ++l) {
+        const Link& link = group[l];
+        const Vec3 d = p[link.b] - p[link.a];
+        const double length = d.norm();
+        if (length == 0.0) continue;  // no direction to correct along
+        const double alpha = link.compliance * inverse_h2;
+        const double w_a = w[link.a], w_b = w[link.b];
+        const double dlambda = (-(length - link.rest) - alpha * lambda[l]) / (w_a + w_b + alpha);
+        lambda[l] += dlambda;
+        const Vec3 step = (dlambda / length) * d;
+        p[link.a] -= w_a * step;
+        p[link.b] += w_b * step;
+      }
+    }
+    for (std::size_t g = 0; g < bending_groups_.size(); ++g) {
+      const std::vector<Triple>& group = bending_groups_[g];
+      std::vector<Vec3>& lambda = bending_lambda_[g];
+      for (std::size_t t = 0; t < group.size(); ++t) {
+        const Triple& triple = group[t];
+        const double w_a = w[triple.a], w_b = w[triple.b], w_c = w[triple.c];
+        const double weight = w_a + 4.0 * w_b + w_c;
+        if (weight == 0.0) continue;  // three pins
+        const double alpha = triple.compliance * inverse_h2;
+        const Vec3 q = p[triple.a] - 2.0 * p[triple.b] + p[triple.c];
+        const Vec3 dlambda = (-q - alpha * lambda[t]) / (weight + alpha);
+        lambda[t] += dlambda;
+        p[triple.a] += w_a * dlambda;
+        p[triple.b] -= 2.0 * w_b * dlambda;
+        p[triple.c] += w_c * dlambda;
+      }
+    }
+  }
+}
+
+std::string Xpbd::divergence_advice() const {
+  return fmt::format(
+      "XPBD's links stretch more the longer its substep: raise solver.substeps (now {} a "
+      "frame) or solver.iterations (now {})",
+      substeps_, iterations_);
+}
+
+std::string Xpbd::solver_summary() const {
+  return fmt::format("{} constraint pass{} a substep over {} + {} colour groups", iterations_,
+                     iterations_ == 1 ? "" : "es", link_groups_.size(), bending_groups_.size());
+}
+
+}  // namespace flagsim::physics

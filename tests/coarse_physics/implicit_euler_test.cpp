@@ -1,0 +1,95 @@
+// Backward Euler: stable at one step per output frame where the explicit
+// integrator needs hundreds, the same statics, the same bits for the same
+// seed, and a failed linear solve reported with what to change.
+#include "flagsim/coarse_physics/implicit_euler.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "flagsim/coarse_physics/spring_damper.hpp"
+#include "flagsim/core/strain.hpp"
+#include "scene_fixtures.hpp"
+
+namespace flagsim::physics {
+namespace {
+
+TEST(ImplicitEuler, HangsWithTheExplicitSagAtOneStepPerFrame) {
+  for (PinSet pin : {PinSet::kTop, PinSet::kCorners}) {
+    const Scene implicit = test::hanging_cloth("implicit", pin);
+    const Scene explicit_ = test::hanging_cloth("spring-damper", pin);
+    EXPECT_EQ(ImplicitEuler(implicit).substeps_per_frame(), 1);
+    const int explicit_substeps = SpringDamperIntegrator(explicit_).substeps_per_frame();
+    EXPECT_GE(explicit_substeps, 20) << "the comparison is about large steps";
+    const double spring = test::settled_sag(explicit_);
+    const double backward = test::settled_sag(implicit);
+    EXPECT_GT(spring, 0.005) << to_string(pin);
+    EXPECT_NEAR(backward, spring, 0.01 * spring) << to_string(pin);
+    std::printf("%s: explicit sag %.5f m at %d substeps/frame, implicit %.5f m at 1\n",
+                to_string(pin), spring, explicit_substeps, backward);
+  }
+}
+
+TEST(ImplicitEuler, StaysBoundedWhereExplicitStepsWouldBlowUp) {
+  // The default fabric at a tenth of a second a step, about 360x the explicit
+  // limit: the flag in wind stays within a few percent of strain.
+  Scene scene = test::hanging_cloth("implicit", PinSet::kLeft);
+  scene.flag.stretch_modulus_n_m = 2.0e4;
+  scene.flag.shear_modulus_n_m = 2.0e3;
+  scene.flag.damping_per_s = 0.1;
+  scene.wind = Wind{};
+  scene.wind->velocity_m_s = Vec3(10, 0, 0);
+  scene.flag.initial_perturbation_m = 0.01;
+  ImplicitEuler physics(scene);
+  EXPECT_GT(physics.substep_s(), 300.0 * physics.stable_substep_s());
+  double worst = 0.0;
+  for (int frame = 0; frame < 50; ++frame) {
+    physics.advance_frame(nullptr);
+    ASSERT_FALSE(physics.failure()) << *physics.failure();
+    const StrainStats strain = link_strain(physics.model().lattice, physics.state().x_m);
+    worst = std::max(worst, strain.max);
+  }
+  EXPECT_LT(worst, 0.05);
+}
+
+TEST(ImplicitEuler, SameSceneAndSeedGiveIdenticalBits) {
+  Scene scene = test::hanging_cloth("implicit", PinSet::kLeft);
+  scene.wind = Wind{};
+  scene.wind->velocity_m_s = Vec3(8, 0, 1);
+  scene.flag.initial_perturbation_m = 0.02;
+  auto run = [&](std::uint64_t seed) {
+    scene.seed = seed;
+    ImplicitEuler physics(scene);
+    for (int f = 0; f < 10; ++f) physics.advance_frame(nullptr);
+    return physics.state().x_m;
+  };
+  const auto a = run(4), b = run(4), c = run(5);
+  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)));
+  EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(Vec3)));
+}
+
+TEST(ImplicitEuler, AnUnsolvableStepIsAFailureThatSaysWhatToChange) {
+  // A cloth 10^7 times stiffer than its weight needs, a second a step: the
+  // system's condition number (h^2 k / m ~ 1e10) is past what the conjugate
+  // gradient reaches in kMaxCgIterations.
+  Scene scene = test::hanging_cloth("implicit", PinSet::kLeft);
+  scene.flag.fine_rows = 65;
+  scene.flag.fine_cols = 97;
+  scene.flag.stretch_modulus_n_m = 1.0e10;
+  scene.flag.shear_modulus_n_m = 1.0e2;
+  scene.fps = 1.0;
+  scene.wind = Wind{};
+  scene.wind->velocity_m_s = Vec3(10, 0, 3);
+  ImplicitEuler physics(scene);
+  for (int frame = 0; frame < 3 && !physics.failure(); ++frame) physics.advance_frame(nullptr);
+  ASSERT_TRUE(physics.failure());
+  EXPECT_NE(physics.failure()->find("did not converge"), std::string::npos) << *physics.failure();
+  EXPECT_NE(physics.failure()->find("raise solver.substeps (now 1)"), std::string::npos)
+      << *physics.failure();
+  EXPECT_EQ(physics.cg_iterations_max(), kMaxCgIterations);
+}
+
+}  // namespace
+}  // namespace flagsim::physics
