@@ -54,7 +54,7 @@ void check_report_path(const std::string& path);
 
 struct SweepOptions {
   std::string scene_path;
-  std::string coarse, substeps, relax, infill;  ///< comma-separated lists
+  std::string coarse, substeps, relax, infill, backend;  ///< comma-separated lists
   std::string output, plot;
   std::vector<std::string> sets;
   std::optional<long long> frames;

@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
       "compare", "Hybrid against a full-lattice reference: accuracy and cost (CSV + table)");
   add_measure_options(compare_cmd, compare.scene_path, compare.frames, compare.horizon_s,
                       compare.sets);
-  compare_cmd->add_option("--reference", compare.reference, "mass-spring (default) or bullet");
+  compare_cmd->add_option("--reference", compare.reference, "mass-spring (default), bullet, implicit, xpbd, or all (errors against the first)");
   compare_cmd->add_option("-o,--output", compare.output, "Report CSV");
 
   flagsim::app::SweepOptions sweep;
@@ -148,6 +148,8 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--substeps", sweep.substeps, "Minimum substeps per frame, e.g. 1,8");
   sweep_cmd->add_option("--relax", sweep.relax, "The paper infill's 3.4 cap, e.g. 100,8000");
   sweep_cmd->add_option("--infill", sweep.infill, "Infill solvers side by side: smooth,paper");
+  sweep_cmd->add_option("--backend", sweep.backend,
+                        "Coarse physics side by side: spring-damper,bullet,implicit,xpbd");
   sweep_cmd->add_option("-o,--output", sweep.output, "Sweep CSV");
   sweep_cmd->add_option("--plot", sweep.plot, "Error against ms per frame, PNG");
   sweep_cmd->add_option("--jobs", sweep.jobs, "Points run at a time (child processes)");

@@ -100,17 +100,19 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
 std::string csv_header() {
   return "point,label,mode,backend,fine,coarse,substeps,relax_iterations,frames,ms_per_frame,"
          "physics_ms,infill_ms,max_strain,p99_strain,short_horizon_rms_m,tracking_rms_m,flap_hz,"
-         "flap_rel_error,mean_shape_rms_m,wrinkle_wavelength_m,status,infill_solver";
+         "flap_rel_error,mean_shape_rms_m,wrinkle_wavelength_m,status,infill_solver,best_reference,"
+         "speedup_vs_best_reference";
 }
 
 std::string csv_line(const ReportRow& r) {
   return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{}",
+      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{}",
       r.point, r.label, r.mode, r.backend, r.fine, r.coarse, r.substeps, r.relax_iterations,
       r.frames, r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
       optional_text(r.short_horizon_rms_m), optional_text(r.tracking_rms_m),
       optional_text(r.flap_hz), optional_text(r.flap_rel_error), optional_text(r.mean_shape_rms_m),
-      optional_text(r.wrinkle_wavelength_m), r.status, r.infill_solver);
+      optional_text(r.wrinkle_wavelength_m), r.status, r.infill_solver, r.best_reference,
+      optional_text(r.speedup_vs_best_reference));
 }
 
 std::vector<std::string> csv_rows(const std::string& path) {
@@ -181,6 +183,8 @@ ReportRow parse_csv_line(const std::string& line) {
   r.wrinkle_wavelength_m = optional(19);
   r.status = text(20);
   r.infill_solver = text(21);
+  r.best_reference = text(22);
+  r.speedup_vs_best_reference = optional(23);
   return r;
 }
 
@@ -189,11 +193,11 @@ std::string text_table(const std::vector<ReportRow>& rows) {
     return v ? fmt::format("{:.1f}", 1e3 * *v) : std::string("-");
   };
   std::string out = fmt::format(
-      "{:<34} {:>9} {:>8} {:>8} {:>7} {:>6} {:>9} {:>9} {:>6} {:>9} {:>8}\n", "run", "ms/frame",
+      "{:<40} {:>9} {:>8} {:>8} {:>7} {:>6} {:>9} {:>9} {:>6} {:>9} {:>8}\n", "run", "ms/frame",
       "physics", "infill", "max%", "p99%", "short mm", "track mm", "flapHz", "shape mm", "wrinkle");
   for (const ReportRow& r : rows)
     out += fmt::format(
-        "{:<34} {:>9.1f} {:>8.1f} {:>8.1f} {:>7.2f} {:>6.2f} {:>9} {:>9} {:>6} {:>9} {:>8}\n",
+        "{:<40} {:>9.1f} {:>8.1f} {:>8.1f} {:>7.2f} {:>6.2f} {:>9} {:>9} {:>6} {:>9} {:>8}\n",
         r.label, r.ms_per_frame, r.physics_ms, r.infill_ms, 100 * r.max_strain, 100 * r.p99_strain,
         mm(r.short_horizon_rms_m), mm(r.tracking_rms_m),
         r.flap_hz ? fmt::format("{:.2f}", *r.flap_hz) : "-", mm(r.mean_shape_rms_m),

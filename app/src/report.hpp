@@ -21,6 +21,11 @@ struct ReportRow {
       mean_shape_rms_m, wrinkle_wavelength_m;
   std::string status;
   std::string infill_solver;  ///< "smooth" or "paper"; empty without an infill
+  /// compare, on the hybrid's row: the fastest full-lattice reference run
+  /// whose p99 strain is no worse than the hybrid's (its label), and its
+  /// ms/frame over the hybrid's; empty where no reference run qualified.
+  std::string best_reference;
+  std::optional<double> speedup_vs_best_reference;
 };
 
 /// Where the metrics look: the short horizon (first `horizon_s`), and the

@@ -76,8 +76,16 @@ std::string parse_infill_solver(const std::string& flag, const std::string& item
   return item;
 }
 
+std::string parse_backend(const std::string& flag, const std::string& item) {
+  for (const char* known : {"spring-damper", "bullet", "implicit", "xpbd"})
+    if (item == known) return item;
+  throw UserError(fmt::format(
+      "{} {}: expected backends spring-damper, bullet, implicit and/or xpbd", flag, item));
+}
+
 // Point 0: the mass-spring reference; 1: Bullet on the full lattice; then the
-// hybrid grid, coarse lattice slowest, relaxation fastest.
+// hybrid grid, coarse lattice slowest, then backend, substeps, infill solver,
+// relaxation fastest.
 std::vector<SweepPoint> grid_of(const SweepOptions& o) {
   std::vector<SweepPoint> points = {{"mass-spring reference", {"scene.mode=\"mass-spring\""}},
                                     {"bullet reference", {"scene.mode=\"bullet\""}}};
@@ -91,27 +99,36 @@ std::vector<SweepPoint> grid_of(const SweepOptions& o) {
   const auto infill = o.infill.empty()
                           ? std::vector<std::string>{""}
                           : parse_list<std::string>("--infill", o.infill, parse_infill_solver);
+  // Empty: the scene's own solver.backend.
+  const auto backends = o.backend.empty()
+                            ? std::vector<std::string>{""}
+                            : parse_list<std::string>("--backend", o.backend, parse_backend);
   for (const auto& [jc, kc] : coarse)
-    for (int s : substeps)
-      for (const std::string& solver : infill)
-        // The relaxation cap is the paper solver's; the smooth one gets one point.
-        for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
-          SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
-                       {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
-          if (s > 0) {
-            p.sets.push_back(fmt::format("solver.substeps={}", s));
-            p.label += fmt::format(" substeps {}", s);
+    for (const std::string& backend : backends)
+      for (int s : substeps)
+        for (const std::string& solver : infill)
+          // The relaxation cap is the paper solver's; the smooth one gets one point.
+          for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
+            SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
+                         {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
+            if (!backend.empty()) {
+              p.sets.push_back(fmt::format("solver.backend=\"{}\"", backend));
+              p.label += fmt::format(" {}", backend);
+            }
+            if (s > 0) {
+              p.sets.push_back(fmt::format("solver.substeps={}", s));
+              p.label += fmt::format(" substeps {}", s);
+            }
+            if (!solver.empty()) {
+              p.sets.push_back(fmt::format("infill.solver=\"{}\"", solver));
+              p.label += fmt::format(" {}", solver);
+            }
+            if (r > 0) {
+              p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
+              p.label += fmt::format(" relax {}", r);
+            }
+            points.push_back(p);
           }
-          if (!solver.empty()) {
-            p.sets.push_back(fmt::format("infill.solver=\"{}\"", solver));
-            p.label += fmt::format(" {}", solver);
-          }
-          if (r > 0) {
-            p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
-            p.label += fmt::format(" relax {}", r);
-          }
-          points.push_back(p);
-        }
   return points;
 }
 
@@ -284,6 +301,7 @@ std::vector<std::string> point_command(const SweepOptions& o) {
   add("--substeps", o.substeps);
   add("--relax", o.relax);
   add("--infill", o.infill);
+  add("--backend", o.backend);
   if (o.frames) add("--frames", std::to_string(*o.frames));
   add("--horizon", fmt::format("{}", o.horizon_s));
   for (const std::string& set : o.sets) add("--set", set);

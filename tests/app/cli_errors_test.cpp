@@ -235,7 +235,7 @@ const std::vector<BadInput>& cases() {
       {"compare_unknown_reference",
        kBase,
        {"compare", "SCENE", "--reference", "havok"},
-       "--reference havok: expected \"mass-spring\" or \"bullet\""},
+       "--reference havok: expected mass-spring, bullet, implicit, xpbd or all"},
       {"compare_without_coarse", kBase, {"compare", "SCENE"}, "flag.coarse"},
       {"sweep_coarse_not_dividing",
        with("coarse = [3, 4]\n"),

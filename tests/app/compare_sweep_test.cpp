@@ -79,6 +79,64 @@ TEST(Compare, WritesTheContractColumnsForEachRun) {
               1e-4 * number(2, "ms_per_frame") + 1e-5);
 }
 
+// --reference all: every full-lattice integrator, implicit and XPBD at more
+// substeps until their p99 strain is no worse than the hybrid's, and the
+// hybrid's speed-up against the fastest reference run that reached it.
+TEST(Compare, AllReferencesAndTheSpeedupAgainstTheBestThatMatchesTheHybridsStrain) {
+  TempDir dir;
+  std::vector<std::string> args = {"compare", "--reference", "all", "-o", "all.csv"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  const ProcessResult result = run_flag_sim(args, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto csv = read_csv(dir.file("all.csv"));
+  const std::size_t mode = column(csv, "mode"), p99 = column(csv, "p99_strain"),
+                    ms = column(csv, "ms_per_frame"), status = column(csv, "status"),
+                    substeps = column(csv, "substeps"), label = column(csv, "label");
+  std::size_t hybrid = 0;
+  std::map<std::string, std::vector<std::size_t>> rows_of;
+  for (std::size_t r = 1; r < csv.size(); ++r) {
+    if (csv[r][label] == "hybrid") hybrid = r;
+    if (csv[r][label].rfind("reference", 0) == 0) rows_of[csv[r][mode]].push_back(r);
+  }
+  ASSERT_GT(hybrid, 0u);
+  EXPECT_EQ(csv[1][mode], "mass-spring");  // the first reference: errors are against it
+  for (const char* m : {"mass-spring", "bullet", "implicit", "xpbd"})
+    EXPECT_FALSE(rows_of[m].empty()) << m;
+  EXPECT_EQ(rows_of["mass-spring"].size(), 1u);
+  EXPECT_EQ(rows_of["bullet"].size(), 1u);
+  const double hybrid_p99 = std::stod(csv[hybrid][p99]);
+  // Each accuracy-stepped ladder doubles its substeps and stops at the first
+  // run that reaches the hybrid's p99 strain.
+  for (const char* m : {"implicit", "xpbd"}) {
+    const std::vector<std::size_t>& ladder = rows_of[m];
+    for (std::size_t i = 0; i + 1 < ladder.size(); ++i) {
+      EXPECT_EQ(std::stoi(csv[ladder[i + 1]][substeps]), 2 * std::stoi(csv[ladder[i]][substeps]));
+      EXPECT_TRUE(csv[ladder[i]][status] != "complete" ||
+                  std::stod(csv[ladder[i]][p99]) > hybrid_p99)
+          << m << " row " << ladder[i] << " already matched the hybrid";
+    }
+  }
+  // The best reference: the fastest complete one with p99 at most the hybrid's.
+  std::size_t best = 0;
+  for (const auto& [m, rows] : rows_of)
+    for (std::size_t r : rows)
+      if (csv[r][status] == "complete" && std::stod(csv[r][p99]) <= hybrid_p99 &&
+          (best == 0 || std::stod(csv[r][ms]) < std::stod(csv[best][ms])))
+        best = r;
+  ASSERT_GT(best, 0u) << "a 17 x 25 run: some reference reaches the hybrid's strain";
+  EXPECT_EQ(csv[hybrid][column(csv, "best_reference")], csv[best][label]);
+  EXPECT_NEAR(std::stod(csv[hybrid][column(csv, "speedup_vs_best_reference")]),
+              std::stod(csv[best][ms]) / std::stod(csv[hybrid][ms]),
+              1e-4 * std::stod(csv[best][ms]) / std::stod(csv[hybrid][ms]));
+  EXPECT_NE(result.out.find("faster than the fastest reference with p99 strain at most"),
+            std::string::npos)
+      << result.out;
+  for (std::size_t r = 1; r < csv.size(); ++r)
+    if (r != hybrid) {
+      EXPECT_EQ(csv[r][column(csv, "best_reference")], "") << r;
+    }
+}
+
 // The flapping is measured at the fly end, whichever edge is pinned: a flag
 // pinned on the right in a wind blowing to -x flaps about as its mirror image
 // pinned on the left (the seeded start is not mirrored: 4.2 vs 3.6 Hz
@@ -181,7 +239,7 @@ TEST(Sweep, PointsShareOneSavedReference) {
   EXPECT_NE(list.out.find("flag.coarse=[5,7]"), std::string::npos) << list.out;
   const ProcessResult whole = run_flag_sim(with({"-o", "w.csv", "--jobs", "2"}), dir.path());
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
-  EXPECT_NE(whole.out.find("run                                 ms/frame"), std::string::npos)
+  EXPECT_NE(whole.out.find("run                                       ms/frame"), std::string::npos)
       << whole.out;
   EXPECT_NE(whole.out.find("hybrid 5x7"), std::string::npos) << whole.out;
   EXPECT_FALSE(fs::exists(dir.file("w.csv.points")));  // the workers' directory is gone
@@ -238,6 +296,30 @@ TEST(Sweep, SlurmScriptsRunAsTheSweep) {
   }
   EXPECT_FALSE(fs::exists(dir.file("bad dir")));
   EXPECT_FALSE(fs::exists(dir.file("j2")));
+}
+
+TEST(Sweep, BackendsSideBySide) {
+  TempDir dir;
+  std::vector<std::string> args = {
+      "sweep", "--coarse", "9x13",   "--backend", "spring-damper,implicit,xpbd",
+      "-o",    "b.csv",    "--quiet"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  const ProcessResult result = run_flag_sim(args, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto csv = read_csv(dir.file("b.csv"));
+  ASSERT_EQ(csv.size(), 6u);  // header, 2 references, 3 backends
+  const std::size_t backend = column(csv, "backend"), label = column(csv, "label");
+  const std::vector<std::string> expected = {"spring-damper", "implicit", "xpbd"};
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(csv[3 + i][backend], expected[i]);
+    EXPECT_NE(csv[3 + i][label].find(expected[i]), std::string::npos) << csv[3 + i][label];
+    EXPECT_EQ(csv[3 + i][column(csv, "status")], "complete");
+  }
+  const ProcessResult bad =
+      run_flag_sim({"sweep", "--coarse", "9x13", "--backend", "havok", "-o", "x.csv"}, dir.path());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--backend havok: expected backends"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.csv")));
 }
 
 TEST(Sweep, PlotsErrorAgainstCost) {
