@@ -79,19 +79,25 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
 class DenseInfill {
  public:
   DenseInfill(const Scene& scene, int coarse_rows, int coarse_cols)
-      : lattice_(scene.fine_lattice()),
+      : DenseInfill(scene, physics::make_cloth_model(scene), coarse_rows, coarse_cols) {}
+
+ private:
+  DenseInfill(const Scene& scene, const physics::ClothModel& model, int coarse_rows,
+              int coarse_cols)
+      : lattice_(model.lattice),
         solver_(infill::make_infill(
             lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
             {infill_solver_of(scene), paper_relax_sweeps_of(scene), wrinkle_params(scene),
              scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
-        mass_kg_(physics::make_cloth_model(scene).mass_kg) {
-    // The same start as the physics' (free nodes perturbed, pinned ones not).
-    positions_ = physics::initial_state(scene, physics::make_cloth_model(scene)).x_m;
-    previous_ = positions_;
-    velocities_.assign(positions_.size(), Vec3::Zero());
-  }
+        mass_kg_(model.mass_kg),
+        // The same start as the physics' (free nodes perturbed, pinned ones not).
+        positions_(physics::initial_state(scene, model).x_m),
+        previous_(positions_),
+        velocities_(positions_.size(), Vec3::Zero()) {}
+
+ public:
   const Lattice& lattice() const { return lattice_; }
   const infill::InfillMethod& solver() const { return *solver_; }
   /// Pinned dense nodes stay where 3.1 puts them (on the pinned coarse lines).
