@@ -1,13 +1,8 @@
 #include "flagsim/coarse_physics/force_terms.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
-
 #include "flagsim/coarse_physics/aero_force.hpp"
 #include "flagsim/coarse_physics/bending_springs.hpp"
 #include "flagsim/coarse_physics/gravity_force.hpp"
-#include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/coarse_physics/stretch_springs.hpp"
 
 namespace flagsim::physics {
@@ -31,28 +26,6 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
                                                 scene.flag.areal_density_kg_m2, cloth_speed));
   }
   return terms;
-}
-
-double explicit_stability_limit(const ClothModel& model,
-                                const std::vector<std::unique_ptr<ForceTerm>>& terms) {
-  std::vector<double> row_sum(model.lattice.node_count(), 0.0);
-  double rate = 0.0;
-  for (const auto& term : terms) {
-    term->add_stiffness_bound(row_sum);
-    rate = std::max(rate, term->velocity_rate_bound());
-  }
-  double omega2 = 0.0;
-  for (std::size_t i = 0; i < row_sum.size(); ++i)
-    if (!model.pinned[i]) omega2 = std::max(omega2, row_sum[i] * (1.0 / model.mass_kg[i]));
-  double limit = std::numeric_limits<double>::infinity();
-  if (omega2 > 0.0) limit = 2.0 / std::sqrt(omega2);
-  if (rate > 0.0) limit = std::min(limit, 1.0 / rate);
-  return limit;
-}
-
-int substeps_per_frame(double frame_s, double stable_substep_s, int minimum) {
-  const double needed = std::ceil(frame_s / (kStabilitySafety * stable_substep_s) - 1e-9);
-  return std::max(minimum, int(std::min(needed, 1e9)));
 }
 
 std::vector<std::string> physics_effects(const Scene& scene, const ClothModel& model) {

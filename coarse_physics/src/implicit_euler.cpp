@@ -47,15 +47,12 @@ void ImplicitEuler::register_stages(StageTimes& times) {
 }
 
 void ImplicitEuler::advance_frame(StageTimes* times) {
-  const double dt = substep_s();
-  const double start = state_.time_s;
   cg_max_ = cg_total_ = 0;
-  worst_relative_residual_ = 0.0;
-  for (const auto& term : terms_) term->begin_frame(start, state_.x_m);
-  for (int s = 0; s < substeps_ && !stop_requested() && !failure_; ++s) {
+  if (failure_) return;
+  advance_substeps(terms_, state_, substeps_, substep_s(), [&](double dt) {
     step(dt, times);
-    state_.time_s = start + (s + 1) * dt;  // frames land exactly on t = n / fps
-  }
+    return !failure_;
+  });
 }
 
 void ImplicitEuler::apply(double dt_s, const std::vector<Vec3>& dv, std::vector<Vec3>& out) {
@@ -108,7 +105,6 @@ bool ImplicitEuler::solve(double dt_s, const std::vector<Vec3>& rhs, std::vector
   }
   cg_max_ = std::max(cg_max_, iteration);
   cg_total_ += iteration;
-  worst_relative_residual_ = std::max(worst_relative_residual_, relative);
   if (!converged)
     failure_ = fmt::format(
         "implicit Euler: the linear solve did not converge at t = {:.4g} s (relative residual "

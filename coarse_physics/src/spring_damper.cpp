@@ -34,14 +34,10 @@ void SpringDamperSolver::register_stages(StageTimes& times) {
 }
 
 void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
-  const double dt = substep_s();
-  const double start = state.time_s;
-  for (const auto& term : terms_) term->begin_frame(start, state.x_m);
-  for (int s = 0; s < substeps_per_frame_ && !stop_requested(); ++s) {
+  advance_substeps(terms_, state, substeps_per_frame_, substep_s(), [&](double dt) {
     step(state, dt, times);
-    // Time from the step count, so frames land exactly on t = n / fps.
-    state.time_s = start + (s + 1) * dt;
-  }
+    return true;
+  });
 }
 
 void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times) {

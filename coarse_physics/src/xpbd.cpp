@@ -68,13 +68,10 @@ void Xpbd::register_stages(StageTimes& times) {
 }
 
 void Xpbd::advance_frame(StageTimes* times) {
-  const double dt = substep_s();
-  const double start = state_.time_s;
-  for (const auto& term : terms_) term->begin_frame(start, state_.x_m);
-  for (int s = 0; s < substeps_ && !stop_requested(); ++s) {
+  advance_substeps(terms_, state_, substeps_, substep_s(), [&](double dt) {
     step(dt, times);
-    state_.time_s = start + (s + 1) * dt;  // frames land exactly on t = n / fps
-  }
+    return true;
+  });
 }
 
 void Xpbd::step(double dt_s, StageTimes* times) {

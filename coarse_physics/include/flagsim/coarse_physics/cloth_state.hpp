@@ -1,10 +1,13 @@
 #pragma once
 // The mutable state of a cloth, and the start every backend and the infill
 // share.
+#include <memory>
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/coarse_physics/force_term.hpp"
 #include "flagsim/core/scene.hpp"
+#include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/vec3.hpp"
 
 namespace flagsim::physics {
@@ -21,5 +24,25 @@ struct ClothState {
 /// perturbation (smooth_perturbation, free nodes only), at rest but for the
 /// pinned nodes, which move with the pole.
 ClothState initial_state(const Scene& scene, const ClothModel& model);
+
+/// One output frame of `substeps` substeps of `dt_s`, the loop every stepper
+/// shares: the terms' begin_frame at the frame's start, then step(dt_s) while
+/// it returns true and no stop was requested (stop_request.hpp); the time is
+/// start + (s + 1) dt after substep s, so frames land exactly on t = n / fps.
+template <typename Step>
+void advance_substeps(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state,
+                      int substeps, double dt_s, Step&& step);
+
+template <typename Step>
+void advance_substeps(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state,
+                      int substeps, double dt_s, Step&& step) {
+  const double start = state.time_s;
+  for (const auto& term : terms) term->begin_frame(start, state.x_m);
+  for (int s = 0; s < substeps && !stop_requested(); ++s) {
+    const bool go_on = step(dt_s);
+    state.time_s = start + (s + 1) * dt_s;
+    if (!go_on) break;
+  }
+}
 
 }  // namespace flagsim::physics

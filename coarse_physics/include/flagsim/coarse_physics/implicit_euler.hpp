@@ -85,7 +85,6 @@ class ImplicitEuler final : public ClothIntegrator {
   std::vector<int> term_stage_;
   int matrix_stage_ = -1, solve_stage_ = -1;
   int cg_max_ = 0, cg_total_ = 0;
-  double worst_relative_residual_ = 0.0;
   std::optional<std::string> failure_;
 };
 

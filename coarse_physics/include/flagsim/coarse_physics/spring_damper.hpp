@@ -21,17 +21,11 @@
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
+#include "flagsim/coarse_physics/stability.hpp"
 #include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
 
 namespace flagsim::physics {
-
-/// Fraction of the stability limit used as substep. Stability alone would allow
-/// ~0.9; accuracy does not: on a released, jiggled 7x9 cloth (spring_damper_test)
-/// the energy error after 1000 substeps is 1.6% of the peak kinetic energy at
-/// 0.8 of the limit and 0.08% at 0.5 (it falls faster than dt^2). 0.5 also
-/// leaves room for the tension (geometric) stiffness the bound leaves out.
-inline constexpr double kStabilitySafety = 0.5;
 
 class SpringDamperSolver {
  public:
