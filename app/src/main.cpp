@@ -137,7 +137,9 @@ int main(int argc, char** argv) {
       "compare", "Hybrid against a full-lattice reference: accuracy and cost (CSV + table)");
   add_measure_options(compare_cmd, compare.scene_path, compare.frames, compare.horizon_s,
                       compare.sets);
-  compare_cmd->add_option("--reference", compare.reference, "mass-spring (default), bullet, implicit, xpbd, or all (errors against the first)");
+  compare_cmd->add_option(
+      "--reference", compare.reference,
+      "mass-spring (default), bullet, implicit, xpbd, or all (errors against the first)");
   compare_cmd->add_option("-o,--output", compare.output, "Report CSV");
 
   flagsim::app::SweepOptions sweep;

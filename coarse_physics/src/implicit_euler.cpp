@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <cmath>
 
 #include "flagsim/coarse_physics/cloth_state.hpp"
@@ -20,6 +22,16 @@ double dot(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 
 }  // namespace
 
+struct ImplicitEuler::Direct {
+  Eigen::SparseMatrix<double> matrix;  ///< [3N x 3N], pinned nodes' rows and columns identity
+  std::vector<int> slot;               ///< value index of each probed entry, in probing order
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  Eigen::VectorXd rhs, solution;
+  bool analysed = false;
+};
+
+ImplicitEuler::~ImplicitEuler() = default;
+
 ImplicitEuler::ImplicitEuler(const Scene& scene)
     : model_(make_cloth_model(scene)),
       pins_(scene.pole),
@@ -35,6 +47,8 @@ ImplicitEuler::ImplicitEuler(const Scene& scene)
   for (auto* v : {&x0_, &v0_, &forces_, &residual_, &delta_, &r_, &z_, &p_, &ap_, &scratch_})
     v->assign(n, Vec3::Zero());
   block_inverse_.assign(n, Mat3::Zero());
+  direct_ = scene.solver.linear == "cholesky";
+  if (direct_) direct_state_ = std::make_unique<Direct>();
   stiffness_diagonal_.assign(n, Mat3::Zero());
   damping_diagonal_.assign(n, Mat3::Zero());
 }
@@ -114,6 +128,91 @@ bool ImplicitEuler::solve(double dt_s, const std::vector<Vec3>& rhs, std::vector
   return converged;
 }
 
+void ImplicitEuler::assemble(double dt_s) {
+  // Probing: with unit vectors on every node of one colour (j mod 5, k mod 5)
+  // and one component, A e holds, in the rows of each node r, the column of
+  // the one node of that colour within 2 rows and 2 columns of r: the reach of
+  // every term (bending triples span 2 links, links and triangles 1).
+  Direct& d = *direct_state_;
+  const Lattice& lattice = model_.lattice;
+  const int rows = lattice.rows, cols = lattice.cols;
+  const std::size_t n = lattice.node_count();
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::size_t entry = 0;
+  if (d.analysed) d.matrix.coeffs().setZero();
+  for (int cj = 0; cj < 5; ++cj) {
+    for (int ck = 0; ck < 5; ++ck) {
+      for (int c = 0; c < 3; ++c) {
+        std::fill(p_.begin(), p_.end(), Vec3::Zero());
+        for (int j = cj; j < rows; j += 5)
+          for (int k = ck; k < cols; k += 5)
+            if (!model_.pinned[lattice.index(j, k)]) p_[lattice.index(j, k)][c] = 1.0;
+        apply(dt_s, p_, ap_);
+        for (int jr = 0; jr < rows; ++jr) {
+          const int j = jr - ((jr - cj) % 5 + 5) % 5 + (((jr - cj) % 5 + 5) % 5 > 2 ? 5 : 0);
+          if (j < 0 || j >= rows) continue;
+          for (int kr = 0; kr < cols; ++kr) {
+            const int k = kr - ((kr - ck) % 5 + 5) % 5 + (((kr - ck) % 5 + 5) % 5 > 2 ? 5 : 0);
+            if (k < 0 || k >= cols) continue;
+            const std::size_t row = lattice.index(jr, kr), col = lattice.index(j, k);
+            if (model_.pinned[row] || model_.pinned[col]) continue;
+            for (int r = 0; r < 3; ++r) {
+              const int at_row = int(3 * row) + r, at_col = int(3 * col) + c;
+              if (at_row < at_col) continue;  // the lower triangle: LDL^T reads only it
+              if (!d.analysed)
+                triplets.emplace_back(at_row, at_col, ap_[row][r]);
+              else
+                d.matrix.valuePtr()[d.slot[entry]] = ap_[row][r];
+              ++entry;
+            }
+          }
+        }
+      }
+    }
+  }
+  if (!d.analysed) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (model_.pinned[i])
+        for (int r = 0; r < 3; ++r) triplets.emplace_back(int(3 * i) + r, int(3 * i) + r, 1.0);
+    d.matrix.resize(int(3 * n), int(3 * n));
+    d.matrix.setFromTriplets(triplets.begin(), triplets.end());
+    d.matrix.makeCompressed();
+    // Where each probed entry landed, to fill values in place from now on.
+    d.slot.resize(entry);
+    std::size_t e = 0;
+    for (const auto& t : triplets) {
+      if (e == entry) break;
+      d.slot[e++] = int(&d.matrix.coeffRef(t.row(), t.col()) - d.matrix.valuePtr());
+    }
+    d.ldlt.analyzePattern(d.matrix);
+    d.analysed = true;
+    d.rhs.resize(int(3 * n));
+  } else {
+    for (std::size_t i = 0; i < n; ++i)
+      if (model_.pinned[i])
+        for (int r = 0; r < 3; ++r) d.matrix.coeffRef(int(3 * i) + r, int(3 * i) + r) = 1.0;
+  }
+}
+
+bool ImplicitEuler::solve_direct(double dt_s, const std::vector<Vec3>& rhs, std::vector<Vec3>& dv) {
+  Direct& d = *direct_state_;
+  assemble(dt_s);
+  d.ldlt.factorize(d.matrix);
+  if (d.ldlt.info() != Eigen::Success) {
+    failure_ = fmt::format(
+        "implicit Euler: the sparse Cholesky factorisation failed at t = {:.4g} s (the system "
+        "is not positive definite: a non-finite state?); use solver.linear = \"cg\" or raise "
+        "solver.substeps (now {})",
+        state_.time_s, substeps_);
+    return false;
+  }
+  for (std::size_t i = 0; i < rhs.size(); ++i) d.rhs.segment<3>(int(3 * i)) = rhs[i];
+  d.solution = d.ldlt.solve(d.rhs);
+  for (std::size_t i = 0; i < rhs.size(); ++i)
+    dv[i] = model_.pinned[i] ? Vec3::Zero() : Vec3(d.solution.segment<3>(int(3 * i)));
+  return true;
+}
+
 void ImplicitEuler::step(double dt_s, StageTimes* times) {
   const double h = dt_s;
   const double next_time = state_.time_s + h;
@@ -163,7 +262,9 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
       }
     });
     bool converged = true;
-    run_timed(times, solve_stage_, [&] { converged = solve(h, residual_, delta_); });
+    run_timed(times, solve_stage_, [&] {
+      converged = direct_ ? solve_direct(h, residual_, delta_) : solve(h, residual_, delta_);
+    });
     if (!converged) break;
     for (std::size_t i = 0; i < n; ++i) v[i] += delta_[i];
   }
@@ -187,6 +288,9 @@ std::string ImplicitEuler::divergence_advice() const {
 }
 
 std::string ImplicitEuler::solver_summary() const {
+  if (direct_)
+    return fmt::format("{} Newton iteration{} a step, sparse LDL^T", newton_iterations_,
+                       newton_iterations_ == 1 ? "" : "s");
   return fmt::format("{} Newton iteration{} a step, CG {} iterations at most in the last frame",
                      newton_iterations_, newton_iterations_ == 1 ? "" : "s", cg_max_);
 }

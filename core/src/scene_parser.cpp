@@ -65,6 +65,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "solver.backend",
                                          "solver.substeps",
                                          "solver.iterations",
+                                         "solver.linear",
                                          "keyframe.time",
                                          "keyframe.corners",
                                          "output.file",
@@ -368,6 +369,7 @@ void read_run_tables(TableReader& root, Scene& scene) {
     scene.solver.substeps = int(in.integer("substeps", 1, 1, 1'000'000));
     if (auto iterations = in.optional_integer("iterations", 1, 10'000))
       scene.solver.iterations = int(*iterations);
+    scene.solver.linear = in.choice("linear", "cg", {"cg", "cholesky"});
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("output")) {

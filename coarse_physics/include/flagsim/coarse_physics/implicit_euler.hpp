@@ -18,6 +18,12 @@
 // (their rows and columns removed: their v1 puts them where the pole is at
 // t + h). It stops when |r - A dv| <= kCgTolerance |r|.
 //
+// solver.linear = "cholesky" solves the same system directly instead: A is
+// assembled by probing its products (every node couples only with nodes at
+// most 2 rows and 2 columns away, so 25 node colours x 3 components = 75
+// products give every entry), its pattern analysed once (AMD ordering) and
+// factorised by Eigen's SimplicialLDLT in every Newton iteration.
+//
 // Stability: unconditional for the linear part (a stiffer cloth or a longer
 // step only damps more); solver.substeps sets the steps per frame (default 1:
 // one step per output frame). What it costs is accuracy (numerical damping of
@@ -43,6 +49,7 @@ inline constexpr int kMaxCgIterations = 4000;
 class ImplicitEuler final : public ClothIntegrator {
  public:
   explicit ImplicitEuler(const Scene& scene);
+  ~ImplicitEuler() override;
   const ClothModel& model() const override { return model_; }
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
@@ -67,6 +74,11 @@ class ImplicitEuler final : public ClothIntegrator {
   void apply(double dt_s, const std::vector<Vec3>& dv, std::vector<Vec3>& out);
   /// dv with A dv = rhs by preconditioned CG; false if it did not converge.
   bool solve(double dt_s, const std::vector<Vec3>& rhs, std::vector<Vec3>& dv);
+  /// The same by sparse Cholesky (LDL^T) of A assembled by probing; false if
+  /// the factorisation failed.
+  bool solve_direct(double dt_s, const std::vector<Vec3>& rhs, std::vector<Vec3>& dv);
+  /// A's entries into the direct solver's matrix (pattern and ordering the first time).
+  void assemble(double dt_s);
 
   ClothModel model_;
   PinMotion pins_;
@@ -86,6 +98,9 @@ class ImplicitEuler final : public ClothIntegrator {
   int matrix_stage_ = -1, solve_stage_ = -1;
   int cg_max_ = 0, cg_total_ = 0;
   std::optional<std::string> failure_;
+  bool direct_ = false;  ///< solver.linear = "cholesky"
+  struct Direct;         ///< the assembled matrix and its factorisation
+  std::unique_ptr<Direct> direct_state_;
 };
 
 }  // namespace flagsim::physics

@@ -107,6 +107,9 @@ struct Solver {
   /// Passes per substep: Bullet's solver iterations (default 10), Newton
   /// iterations of "implicit" (default 1), constraint passes of "xpbd" (default 1).
   std::optional<int> iterations;
+  /// The implicit backend's linear solver: "cg" (matrix-free preconditioned
+  /// conjugate gradient) or "cholesky" (sparse LDL^T of the assembled matrix).
+  std::string linear = "cg";
 };
 
 struct Keyframe {
