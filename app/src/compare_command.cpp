@@ -141,7 +141,8 @@ int compare_command(const CompareOptions& options) {
   rows.push_back(describe(hybrid_scene, hybrid, primary, &tracking, window));
   rows.back().label = "hybrid";
   ReportRow& hybrid_row = rows.back();
-  if (const ReportRow* best = best_reference(reference_rows, hybrid_p99)) {
+  const ReportRow* best = best_reference(reference_rows, hybrid_p99);
+  if (best) {
     hybrid_row.best_reference = best->label;
     if (hybrid_row.ms_per_frame > 0.0)
       hybrid_row.speedup_vs_best_reference = best->ms_per_frame / hybrid_row.ms_per_frame;
@@ -152,7 +153,7 @@ int compare_command(const CompareOptions& options) {
                 "hybrid: {:.3g}x faster than the fastest reference with p99 strain at "
                 "most its {:.3g}%: {} ({:.1f} ms/frame)\n",
                 *hybrid_row.speedup_vs_best_reference, 100 * hybrid_p99, hybrid_row.best_reference,
-                best_reference(reference_rows, hybrid_p99)->ms_per_frame)
+                best->ms_per_frame)
           : fmt::format("hybrid: no reference run reached its p99 strain of {:.3g}%{}\n",
                         100 * hybrid_p99,
                         modes.size() == 1 && !steps_by_accuracy(modes[0])

@@ -149,8 +149,7 @@ BulletCloth::BulletCloth(const Scene& scene)
 BulletCloth::~BulletCloth() = default;
 
 void BulletCloth::register_stages(StageTimes& times) {
-  term_stage_.clear();
-  for (const auto& term : terms_) term_stage_.push_back(times.add(std::string(term->name())));
+  term_stage_ = register_term_stages(terms_, times);
   step_stage_ = times.add("bullet_step");
 }
 

@@ -28,6 +28,13 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
   return terms;
 }
 
+std::vector<int> register_term_stages(const std::vector<std::unique_ptr<ForceTerm>>& terms,
+                                      StageTimes& times) {
+  std::vector<int> stages;
+  for (const auto& term : terms) stages.push_back(times.add(std::string(term->name())));
+  return stages;
+}
+
 std::vector<std::string> physics_effects(const Scene& scene, const ClothModel& model) {
   std::vector<std::string> effects = {"stretch"};
   if (scene.bending) effects.emplace_back("bending");

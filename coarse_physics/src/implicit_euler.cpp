@@ -54,8 +54,7 @@ ImplicitEuler::ImplicitEuler(const Scene& scene)
 }
 
 void ImplicitEuler::register_stages(StageTimes& times) {
-  term_stage_.clear();
-  for (const auto& term : terms_) term_stage_.push_back(times.add(std::string(term->name())));
+  term_stage_ = register_term_stages(terms_, times);
   matrix_stage_ = times.add("newton_matrix");
   solve_stage_ = times.add("linear_solve");
 }
@@ -249,16 +248,18 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
         residual_[i] = model_.pinned[i] ? Vec3::Zero()
                                         : Vec3(h * (forces_[i] - scratch_[i]) -
                                                model_.mass_kg[i] * (mass_scale * v[i] - v0_[i]));
-      std::fill(stiffness_diagonal_.begin(), stiffness_diagonal_.end(), Mat3::Zero());
-      std::fill(damping_diagonal_.begin(), damping_diagonal_.end(), Mat3::Zero());
-      for (const auto& term : terms_) {
-        term->add_stiffness_diagonal(stiffness_diagonal_);
-        term->add_damping_diagonal(damping_diagonal_);
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        const Mat3 block = mass_scale * model_.mass_kg[i] * Mat3::Identity() +
-                           h * damping_diagonal_[i] + h * h * stiffness_diagonal_[i];
-        block_inverse_[i] = model_.pinned[i] ? Mat3::Zero() : Mat3(block.inverse());
+      if (!direct_) {  // the CG's preconditioner: A's diagonal blocks, inverted
+        std::fill(stiffness_diagonal_.begin(), stiffness_diagonal_.end(), Mat3::Zero());
+        std::fill(damping_diagonal_.begin(), damping_diagonal_.end(), Mat3::Zero());
+        for (const auto& term : terms_) {
+          term->add_stiffness_diagonal(stiffness_diagonal_);
+          term->add_damping_diagonal(damping_diagonal_);
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+          const Mat3 block = mass_scale * model_.mass_kg[i] * Mat3::Identity() +
+                             h * damping_diagonal_[i] + h * h * stiffness_diagonal_[i];
+          block_inverse_[i] = model_.pinned[i] ? Mat3::Zero() : Mat3(block.inverse());
+        }
       }
     });
     bool converged = true;

@@ -28,8 +28,7 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
 }
 
 void SpringDamperSolver::register_stages(StageTimes& times) {
-  term_stage_.clear();
-  for (const auto& term : terms_) term_stage_.push_back(times.add(std::string(term->name())));
+  term_stage_ = register_term_stages(terms_, times);
   update_stage_ = times.add("integrate");
 }
 

@@ -61,8 +61,7 @@ Xpbd::Xpbd(const Scene& scene)
 }
 
 void Xpbd::register_stages(StageTimes& times) {
-  term_stage_.clear();
-  for (const auto& term : terms_) term_stage_.push_back(times.add(std::string(term->name())));
+  term_stage_ = register_term_stages(terms_, times);
   project_stage_ = times.add("constraints");
   update_stage_ = times.add("integrate");
 }

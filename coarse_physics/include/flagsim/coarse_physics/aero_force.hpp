@@ -36,7 +36,7 @@ Vec3 triangle_aero_force(const Vec3& x0, const Vec3& x1, const Vec3& x2,
 
 /// dF/du of triangle_aero_force for the same arguments, N s/m: the wind's
 /// velocity derivative (the air's velocity relative to the triangle is u, so a
-/// node's velocity enters with -1/3). Drag's part is 1/2 rho C_d (2 |u.c| / |c|^2) c c^T / 2,
+/// node's velocity enters with -1/3). Drag's part, rho/4 C_d 2 |u.c| / |c|^2 c c^T, is
 /// positive semidefinite; lift's part is not symmetric.
 Mat3 triangle_aero_velocity_jacobian(const Vec3& x0, const Vec3& x1, const Vec3& x2,
                                      const Vec3& relative_velocity, const Wind& wind);

@@ -10,6 +10,7 @@
 #include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/coarse_physics/stability.hpp"
 #include "flagsim/core/scene.hpp"
+#include "flagsim/core/stage_times.hpp"
 
 namespace flagsim::physics {
 
@@ -26,6 +27,10 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
                                                          const ClothModel& model,
                                                          const PinMotion& pins,
                                                          TermSelection selection = {});
+
+/// One timing column per term, named after it, in pipeline order; returns their indices.
+std::vector<int> register_term_stages(const std::vector<std::unique_ptr<ForceTerm>>& terms,
+                                      StageTimes& times);
 
 /// Effects of the scene's physics in pipeline order (root attribute `effects`):
 /// stretch, bending, gravity, wind, gusts, turbulence, damping, pole.
