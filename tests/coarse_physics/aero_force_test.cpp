@@ -94,7 +94,7 @@ TEST(AeroForce, VelocityJacobianOfOneTriangleMatchesFiniteDifferences) {
       const Vec3 numeric = (triangle_aero_force(x0, x1, x2, u + du, wind) -
                             triangle_aero_force(x0, x1, x2, u - du, wind)) /
                            (2.0 * h);
-      EXPECT_LT((analytic.col(c) - numeric).norm(), 1e-6 * analytic.norm())
+      EXPECT_LT((analytic.col(c) - numeric).norm(), test::kFiniteDifferenceRelTol * analytic.norm())
           << "u = " << u.transpose() << " column " << c;
     }
   }

@@ -86,7 +86,7 @@ inline void expect_derivative_is_minus_force_jacobian(physics::ForceTerm& term,
     largest = std::max(largest, scale);
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 numeric = -(plus[i] - minus[i]) / (2.0 * h);
-      EXPECT_LT((analytic[i] - numeric).norm(), 1e-5 * scale + 1e-9)
+      EXPECT_LT((analytic[i] - numeric).norm(), kFiniteDifferenceRelTol * scale + 1e-9)
           << "trial " << trial << " node " << i << ": " << analytic[i].transpose() << " vs "
           << numeric.transpose();
     }
@@ -103,7 +103,7 @@ inline void expect_derivative_is_minus_force_jacobian(physics::ForceTerm& term,
       std::vector<Vec3> unit(n, Vec3::Zero());
       unit[i][c] = 1.0;
       const Vec3 column = product(unit)[i];
-      EXPECT_LT((diagonal[i].col(c) - column).norm(), 1e-12 * (column.norm() + 1.0))
+      EXPECT_LT((diagonal[i].col(c) - column).norm(), kAnalyticRelTol * (column.norm() + 1.0))
           << "node " << i << " column " << c;
     }
   }

@@ -11,6 +11,7 @@
 #include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/core/strain.hpp"
 #include "scene_fixtures.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::physics {
 namespace {
@@ -25,7 +26,7 @@ TEST(ImplicitEuler, HangsWithTheExplicitSagAtOneStepPerFrame) {
     const double spring = test::settled_sag(explicit_);
     const double backward = test::settled_sag(implicit);
     EXPECT_GT(spring, 0.005) << to_string(pin);
-    EXPECT_NEAR(backward, spring, 0.01 * spring) << to_string(pin);
+    EXPECT_NEAR(backward, spring, test::kSagRelTol * spring) << to_string(pin);
     std::printf("%s: explicit sag %.5f m at %d substeps/frame, implicit %.5f m at 1\n",
                 to_string(pin), spring, explicit_substeps, backward);
   }
@@ -80,7 +81,7 @@ TEST(ImplicitEuler, CholeskyOfTheProbedMatrixAgreesWithTheConjugateGradient) {
     apart = std::max(apart, (cg[i] - direct[i]).norm());
   }
   EXPECT_GT(moved, 0.01);  // the cloth moved: there is something to agree on
-  EXPECT_LT(apart, 1e-3 * moved);
+  EXPECT_LT(apart, test::kLinearSolveAgreement * moved);
   std::printf("cg vs cholesky: %.3g m apart after the cloth moved %.3g m\n", apart, moved);
 }
 

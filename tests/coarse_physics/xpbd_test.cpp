@@ -9,6 +9,7 @@
 #include <set>
 
 #include "scene_fixtures.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::physics {
 namespace {
@@ -27,7 +28,7 @@ TEST(Xpbd, StaticSagConvergesToTheExplicitOneAsSubstepsGrow) {
     EXPECT_LT(error, previous_error) << substeps << " substeps";
     previous_error = error;
   }
-  EXPECT_LT(previous_error, 0.01);
+  EXPECT_LT(previous_error, test::kSagRelTol);
 }
 
 TEST(Xpbd, ColourGroupsShareNoNode) {
