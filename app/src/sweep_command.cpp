@@ -77,8 +77,7 @@ std::string parse_infill_solver(const std::string& flag, const std::string& item
 }
 
 std::string parse_backend(const std::string& flag, const std::string& item) {
-  for (const char* known : {"spring-damper", "bullet", "implicit", "xpbd"})
-    if (item == known) return item;
+  if (std::find(kBackends.begin(), kBackends.end(), item) != kBackends.end()) return item;
   throw UserError(fmt::format(
       "{} {}: expected backends spring-damper, bullet, implicit and/or xpbd", flag, item));
 }

@@ -364,8 +364,7 @@ void read_infill_tables(TableReader& root, Scene& scene) {
 void read_run_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("solver")) {
     TableReader in(*t, "solver", root.where_of("solver"));
-    scene.solver.backend =
-        in.choice("backend", "spring-damper", {"spring-damper", "bullet", "implicit", "xpbd"});
+    scene.solver.backend = in.choice("backend", "spring-damper", kBackends);
     scene.solver.substeps = int(in.integer("substeps", 1, 1, 1'000'000));
     if (auto iterations = in.optional_integer("iterations", 1, 10'000))
       scene.solver.iterations = int(*iterations);

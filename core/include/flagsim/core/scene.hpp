@@ -101,6 +101,10 @@ struct InfillSettings {
   std::optional<InfillSolverKind> solver;
 };
 
+/// The physics backends solver.backend names (contract), in the order users are told them.
+inline const std::vector<std::string_view> kBackends = {"spring-damper", "bullet", "implicit",
+                                                        "xpbd"};
+
 struct Solver {
   std::string backend = "spring-damper";
   int substeps = 1;  ///< minimum substeps per output frame
