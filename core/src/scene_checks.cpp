@@ -104,6 +104,17 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
                  "or \"infill\"");
     scene.wrinkles.reset();
   }
+  // The implicit backend alone solves a linear system; elsewhere solver.linear
+  // would be silently ignored.
+  if (scene.mode != Mode::kInfill && root.table().at_path("solver.linear") &&
+      backend_of(scene) != "implicit") {
+    if (!mode_from_command_line)
+      fail_at(root, "solver.linear",
+              fmt::format("the {} backend has no linear solve; solver.linear applies to "
+                          "solver.backend = \"implicit\" or scene.mode = \"implicit\"",
+                          backend_of(scene)));
+    unused.push_back("solver.linear");
+  }
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
                                       to_string(scene.mode), fmt::join(unused, ", ")));

@@ -87,6 +87,29 @@ TEST(SceneParser, ErrorsNameFileLineColumnAndKey) {
             "s.toml:7:1: unknown key 'flag.areal_densty' (did you mean 'flag.areal_density'?)");
 }
 
+TEST(SceneParser, LinearSolverOnlyWithTheImplicitBackend) {
+  const std::string cholesky = "[solver]\nlinear = \"cholesky\"\n";
+  const std::string message = error_of(std::string(kMinimal) + cholesky);
+  EXPECT_NE(message.find("s.toml:8:10: solver.linear: the spring-damper backend has no linear "
+                         "solve"),
+            std::string::npos)
+      << message;
+  const std::string implicit_scene = R"(
+[scene]
+mode = "implicit"
+[flag]
+size = [1.5, 1.0]
+fine = [9, 13]
+)";
+  EXPECT_EQ(error_of(implicit_scene + cholesky), "");
+  EXPECT_EQ(parse_scene(implicit_scene + cholesky, "s.toml").solver.linear, "cholesky");
+  // The mode chosen on the command line: named in a note, not refused.
+  const Scene scene = parse_scene(implicit_scene + cholesky, "s.toml",
+                                  std::vector<std::string>{"scene.mode=\"xpbd\""});
+  ASSERT_EQ(scene.notes.size(), 1u);
+  EXPECT_EQ(scene.notes[0], "note: xpbd mode does not use solver.linear: ignored");
+}
+
 TEST(SceneParser, CoarseMustDivideFineAndSaysWhatWould) {
   const std::string message = error_of(std::string(kMinimal) + "coarse = [4, 5]\n");
   EXPECT_NE(message.find("s.toml:7:10: flag.coarse"), std::string::npos) << message;
