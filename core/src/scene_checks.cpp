@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <string>
+#include <utility>
+
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/limits.hpp"
 
@@ -59,9 +62,13 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
   // silently ignored); with the mode chosen on the command line (--mode,
   // --set scene.mode, compare's reference), ignored and named in one note.
   std::vector<std::string> unused;
+  const auto unused_setting = [&](const char* dotted, std::string named,
+                                  const std::string& message) {
+    if (!mode_from_command_line) fail_at(root, dotted, message);
+    unused.push_back(std::move(named));
+  };
   const auto unused_table = [&](const char* table, const std::string& message) {
-    if (!mode_from_command_line) fail_at(root, table, message);
-    unused.push_back(fmt::format("[{}]", table));
+    unused_setting(table, fmt::format("[{}]", table), message);
   };
   if (scene.mode == Mode::kInfill) {
     if (scene.keyframes.empty())
@@ -106,15 +113,12 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
   }
   // The implicit backend alone solves a linear system; elsewhere solver.linear
   // would be silently ignored.
-  if (scene.mode != Mode::kInfill && root.table().at_path("solver.linear") &&
-      backend_of(scene) != "implicit") {
-    if (!mode_from_command_line)
-      fail_at(root, "solver.linear",
-              fmt::format("the {} backend has no linear solve; solver.linear applies to "
-                          "solver.backend = \"implicit\" or scene.mode = \"implicit\"",
-                          backend_of(scene)));
-    unused.push_back("solver.linear");
-  }
+  if (const std::string backend = backend_of(scene);
+      scene.mode != Mode::kInfill && root.table().at_path("solver.linear") && backend != "implicit")
+    unused_setting("solver.linear", "solver.linear",
+                   fmt::format("the {} backend has no linear solve; solver.linear applies to "
+                               "solver.backend = \"implicit\" or scene.mode = \"implicit\"",
+                               backend));
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
                                       to_string(scene.mode), fmt::join(unused, ", ")));

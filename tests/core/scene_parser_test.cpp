@@ -94,13 +94,8 @@ TEST(SceneParser, LinearSolverOnlyWithTheImplicitBackend) {
                          "solve"),
             std::string::npos)
       << message;
-  const std::string implicit_scene = R"(
-[scene]
-mode = "implicit"
-[flag]
-size = [1.5, 1.0]
-fine = [9, 13]
-)";
+  std::string implicit_scene = kMinimal;
+  implicit_scene.replace(implicit_scene.find("mass-spring"), 11, "implicit");
   EXPECT_EQ(error_of(implicit_scene + cholesky), "");
   EXPECT_EQ(parse_scene(implicit_scene + cholesky, "s.toml").solver.linear, "cholesky");
   // The mode chosen on the command line: named in a note, not refused.
