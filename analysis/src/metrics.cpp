@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "flagsim/core/strain.hpp"
+
 namespace flagsim::analysis {
 namespace {
 
@@ -89,18 +91,7 @@ double flap_frequency_hz(std::span<const double> signal, double fps) {
 StrainDistribution strain_distribution(const Lattice& lattice, const Frames& frames) {
   std::vector<float> strains;
   for (const auto& x : frames)
-    for (int j = 0; j < lattice.rows; ++j)
-      for (int k = 0; k < lattice.cols; ++k) {
-        const Vec3& p = x[lattice.index(j, k)];
-        if (k + 1 < lattice.cols)
-          strains.push_back(
-              float(std::abs((x[lattice.index(j, k + 1)] - p).norm() - lattice.spacing_x_m) /
-                    lattice.spacing_x_m));
-        if (j + 1 < lattice.rows)
-          strains.push_back(
-              float(std::abs((x[lattice.index(j + 1, k)] - p).norm() - lattice.spacing_y_m) /
-                    lattice.spacing_y_m));
-      }
+    for_each_link(lattice, [&](const Link& link) { strains.push_back(float(strain_of(x, link))); });
   if (strains.empty()) return {};
   const std::size_t at = std::size_t(0.99 * double(strains.size() - 1));
   std::nth_element(strains.begin(), strains.begin() + long(at), strains.end());

@@ -57,14 +57,9 @@ int relax_lattice(const Lattice& lattice, std::span<const std::uint8_t> held,
   // Not converged: the coarse nodes ask for more (or less) length than the
   // fibers have. Red-black passes then leave the surplus on every other link;
   // one row-major pass spreads it along the fibers instead.
-  for (int j = 0; j < rows; ++j) {
-    const std::size_t row = std::size_t(j) * stride;
-    for (int k = 0; k < cols; ++k) {
-      const std::size_t a = row + std::size_t(k);
-      if (k + 1 < cols) project_link(x[a], x[a + 1], h[a], h[a + 1], sx, inv_sx);
-      if (j + 1 < rows) project_link(x[a], x[a + stride], h[a], h[a + stride], sy, inv_sy);
-    }
-  }
+  for_each_link(lattice, [&](const Link& link) {
+    project_link(x[link.a], x[link.b], h[link.a], h[link.b], link.rest_m, 1.0 / link.rest_m);
+  });
   return max_sweeps;
 }
 

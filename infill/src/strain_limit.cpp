@@ -27,21 +27,13 @@ bool shorten(Vec3& a, Vec3& b, bool a_fixed, bool b_fixed, double longest) {
 
 int limit_stretch(const Lattice& lattice, std::span<const std::uint8_t> fixed,
                   std::span<Vec3> positions_m, double max_strain, int max_passes) {
-  const double longest_x = (1.0 + max_strain) * lattice.spacing_x_m;
-  const double longest_y = (1.0 + max_strain) * lattice.spacing_y_m;
+  const double longest = 1.0 + max_strain;  // times each link's rest length
   for (int pass = 1; pass <= max_passes; ++pass) {
     bool moved = false;
-    for (int j = 0; j < lattice.rows; ++j) {
-      for (int k = 0; k < lattice.cols; ++k) {
-        const std::size_t a = lattice.index(j, k);
-        if (k + 1 < lattice.cols)
-          moved |= shorten(positions_m[a], positions_m[a + 1], fixed[a], fixed[a + 1], longest_x);
-        if (j + 1 < lattice.rows) {
-          const std::size_t b = lattice.index(j + 1, k);
-          moved |= shorten(positions_m[a], positions_m[b], fixed[a], fixed[b], longest_y);
-        }
-      }
-    }
+    for_each_link(lattice, [&](const Link& link) {
+      moved |= shorten(positions_m[link.a], positions_m[link.b], fixed[link.a], fixed[link.b],
+                       longest * link.rest_m);
+    });
     if (!moved) return pass;
   }
   return max_passes;

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <utility>
+#include <vector>
+
 namespace flagsim {
 namespace {
 
@@ -25,6 +29,34 @@ TEST(Lattice, CornersInContractOrder) {
   EXPECT_EQ(corners[1], lattice.index(0, 5));
   EXPECT_EQ(corners[2], lattice.index(3, 0));
   EXPECT_EQ(corners[3], lattice.index(3, 5));
+}
+
+TEST(Lattice, EveryLinkOnceInRowMajorOrderWithItsRestLength) {
+  // 3 x 4 nodes: 3 x 3 row links (rest 1/3 m) and 2 x 4 column links (rest 1 m).
+  const Lattice lattice = Lattice::rectangle(3, 4, 1.0, 2.0, Vec3::Zero());
+  std::vector<Link> links;
+  for_each_link(lattice, [&](const Link& link) { links.push_back(link); });
+  ASSERT_EQ(links.size(), 17u);
+  std::set<std::pair<std::size_t, std::size_t>> seen;
+  std::size_t last_a = 0;
+  for (const Link& link : links) {
+    EXPECT_TRUE(seen.emplace(link.a, link.b).second) << link.a << "-" << link.b;
+    EXPECT_GE(link.a, last_a);  // node by node
+    last_a = link.a;
+    if (link.b == link.a + 1) {
+      EXPECT_NE(link.b % 4, 0u) << "a row link does not wrap to the next row";
+      EXPECT_DOUBLE_EQ(link.rest_m, lattice.spacing_x_m);
+    } else {
+      EXPECT_EQ(link.b, link.a + 4);
+      EXPECT_DOUBLE_EQ(link.rest_m, lattice.spacing_y_m);
+    }
+  }
+  // Node (0, 0): its row link, then its column link.
+  EXPECT_EQ(links[0].b, lattice.index(0, 1));
+  EXPECT_EQ(links[1].b, lattice.index(1, 0));
+  // The last node with a link is (2, 2), to (2, 3).
+  EXPECT_EQ(links.back().a, lattice.index(2, 2));
+  EXPECT_EQ(links.back().b, lattice.index(2, 3));
 }
 
 }  // namespace

@@ -75,22 +75,19 @@ TEST(InfillSolver, FollowsAGraduallyRolledClothSeamlessly) {
   // coarse nodes are the last to relax).
   double edge_sum = 0.0, inner_sum = 0.0, edge_max = 0.0, inner_max = 0.0;
   int edge_links = 0, inner_links = 0;
-  auto on_edge = [&](int j, int k) { return j % grid.row_stride == 0 || k % grid.col_stride == 0; };
-  auto visit = [&](int j0, int k0, int j1, int k1, double rest_m) {
-    const double strain =
-        std::abs((dense[lattice.index(j1, k1)] - dense[lattice.index(j0, k0)]).norm() - rest_m) /
-        rest_m;
-    const bool edge = on_edge(j0, k0) || on_edge(j1, k1);
+  auto on_edge = [&](std::size_t node) {
+    const std::size_t cols = std::size_t(lattice.cols);
+    return (node / cols) % std::size_t(grid.row_stride) == 0 ||
+           (node % cols) % std::size_t(grid.col_stride) == 0;
+  };
+  for_each_link(lattice, [&](const Link& link) {
+    const double strain = strain_of(dense, link);
+    const bool edge = on_edge(link.a) || on_edge(link.b);
     (edge ? edge_sum : inner_sum) += strain;
     (edge ? edge_links : inner_links) += 1;
     double& largest = edge ? edge_max : inner_max;
     largest = std::max(largest, strain);
-  };
-  for (int j = 0; j < lattice.rows; ++j)
-    for (int k = 0; k < lattice.cols; ++k) {
-      if (k + 1 < lattice.cols) visit(j, k, j, k + 1, lattice.spacing_x_m);
-      if (j + 1 < lattice.rows) visit(j, k, j + 1, k, lattice.spacing_y_m);
-    }
+  });
   EXPECT_LE(edge_sum / edge_links, inner_sum / inner_links);
   EXPECT_LE(edge_max, kRelaxTolerance);
   EXPECT_LE(inner_max, kRelaxTolerance);

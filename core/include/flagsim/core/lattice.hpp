@@ -38,4 +38,26 @@ struct Lattice {
   std::array<std::size_t, 4> corners() const;
 };
 
+/// One link between neighbour nodes: flat indices a, b (b the right or lower
+/// neighbour) and its rest length, m.
+struct Link {
+  std::size_t a = 0, b = 0;
+  double rest_m = 0.0;
+};
+
+/// Calls visit(link) for every link of the lattice, node by node in row-major
+/// order: node (j, k)'s row link to (j, k + 1) (rest spacing_x), then its
+/// column link to (j + 1, k) (rest spacing_y). The project's one link order:
+/// the Gauss-Seidel passes that go through it depend on it.
+template <class Visit>
+void for_each_link(const Lattice& lattice, Visit&& visit) {
+  const std::size_t stride = std::size_t(lattice.cols);
+  for (int j = 0; j < lattice.rows; ++j)
+    for (int k = 0; k < lattice.cols; ++k) {
+      const std::size_t a = lattice.index(j, k);
+      if (k + 1 < lattice.cols) visit(Link{a, a + 1, lattice.spacing_x_m});
+      if (j + 1 < lattice.rows) visit(Link{a, a + stride, lattice.spacing_y_m});
+    }
+}
+
 }  // namespace flagsim

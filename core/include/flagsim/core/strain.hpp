@@ -1,5 +1,6 @@
 #pragma once
 // Strain statistics of a lattice state (contract: /stats/max_strain, /stats/mean_strain).
+#include <cmath>
 #include <span>
 
 #include "flagsim/core/lattice.hpp"
@@ -10,6 +11,11 @@ struct StrainStats {
   double max = 0.0;   ///< max over all row and column neighbour links of |d - S| / S
   double mean = 0.0;  ///< mean of the same over all links
 };
+
+/// |d - S| / S of one link at positions_m (d its length, S its rest length).
+inline double strain_of(std::span<const Vec3> positions_m, const Link& link) {
+  return std::abs((positions_m[link.b] - positions_m[link.a]).norm() - link.rest_m) / link.rest_m;
+}
 
 /// Strain of every row link ((j,k)-(j,k+1), rest S = spacing_x) and column link
 /// ((j,k)-(j+1,k), rest S = spacing_y). positions_m: [J*K] row-major, m.
