@@ -19,6 +19,8 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
       coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)),
       wrinkles_(wrinkles) {
   surface_.resize(fine.node_count());
+  correction_.resize(fine.node_count());
+  smoothed_.resize(fine.node_count());
   // 3.3's weights along the rows: row links between coarse row-link midpoints,
   // column links between coarse columns.
   for (int k = 0; k + 1 < fine.cols; ++k)
@@ -100,6 +102,31 @@ void SmoothInfill::add_coarser_offsets(std::span<Vec3> positions_m) {
       for (int k = 0; k < K; ++k) out[k] += w * row[k];
     }
   }
+}
+
+void SmoothInfill::smooth_correction(std::span<Vec3> positions_m) {
+  const int J = lattice_.rows, K = lattice_.cols;
+  for (std::size_t i = 0; i < correction_.size(); ++i)
+    correction_[i] = positions_m[i] - surface_[i];
+  // Binomial (1, 2, 1) / 4 along the rows, then down the columns, ends
+  // repeated; kSmoothingPasses times.
+  for (int pass = 0; pass < kSmoothingPasses; ++pass) {
+    for (int j = 0; j < J; ++j) {
+      const Vec3* in = &correction_[lattice_.index(j, 0)];
+      Vec3* out = &smoothed_[lattice_.index(j, 0)];
+      for (int k = 0; k < K; ++k)
+        out[k] = 0.5 * in[k] + 0.25 * (in[std::max(k - 1, 0)] + in[std::min(k + 1, K - 1)]);
+    }
+    for (int j = 0; j < J; ++j) {
+      const Vec3* up = &smoothed_[lattice_.index(std::max(j - 1, 0), 0)];
+      const Vec3* here = &smoothed_[lattice_.index(j, 0)];
+      const Vec3* down = &smoothed_[lattice_.index(std::min(j + 1, J - 1), 0)];
+      Vec3* out = &correction_[lattice_.index(j, 0)];
+      for (int k = 0; k < K; ++k) out[k] = 0.5 * here[k] + 0.25 * (up[k] + down[k]);
+    }
+  }
+  for (std::size_t i = 0; i < correction_.size(); ++i)
+    if (!held_[i]) positions_m[i] = surface_[i] + correction_[i];
 }
 
 void SmoothInfill::hold(std::span<const std::uint8_t> nodes) {
@@ -267,6 +294,11 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
                                     kStepsPerFiber);
   };
   run_timed(times, stages_.projection, relax);
+  if (!coarser_)  // the coarsest level: the correction at the scale of a cell, smoothed
+    for (int cycle = 0; cycle < kSmoothingCycles; ++cycle) {
+      run_timed(times, stages_.projection, [&] { smooth_correction(positions_m); });
+      run_timed(times, stages_.projection, relax);
+    }
   if (wrinkles_) {
     run_timed(times, stages_.wrinkles, [&] { add_wrinkles(positions_m); });
     run_timed(times, stages_.projection, relax);

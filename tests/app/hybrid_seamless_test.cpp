@@ -15,16 +15,14 @@
 namespace flagsim::test {
 namespace {
 
-// The imprint bounds: the figure is 1.3 on every frame after the
-// first second. Measured (default scene and the shapes below, 4-point
-// upsampling between levels and bands interpolated across cells): medians
-// 1.00-1.05, and 0-3 frames of 61-271 above 1.3, worst 1.36, where the 9 x 13
-// physics folds a coarse link by tens of degrees. So: the median at most 1.3,
-// at most 2% of frames above it, none above 1.4. A per-cell infill gives 7;
-// bilinear upsampling and cell-wise bands gave 16 frames above 1.3, worst 1.61.
-constexpr double kImprint = 1.3;
-constexpr double kFrameImprint = 1.4;
-constexpr double kFramesAboveShare = 0.02;
+// The imprint bounds: the figure, 1.3 on every frame after the first
+// second. Measured (default scene and the shapes below, the coarsest level's
+// correction smoothed): worst frames 1.19 / 1.14 / 1.20 / 1.29 (the wide flag's
+// surface alone gives 1.33 on its worst frame), medians 0.96-1.02. So every
+// frame at most 1.3 and the median at most 1.1. A per-cell infill gives 7;
+// without the smoothing the default scene had 1 frame of 271 at 1.36.
+constexpr double kFrameImprint = 1.3;
+constexpr double kMedianImprint = 1.1;
 
 // The lattice of a file, from its rest positions.
 Lattice lattice_of(const data::OutputReader& reader) {
@@ -40,7 +38,7 @@ Lattice lattice_of(const data::OutputReader& reader) {
 
 struct ImprintStats {
   double median = 0.0, worst = 0.0;
-  double share_above = 0.0;  ///< of the frames, those above kImprint
+  int worst_frame = -1;
 };
 
 // Per frame from t >= 1 s (the flag is flat, hence featureless, before).
@@ -49,15 +47,20 @@ ImprintStats imprint_of(const data::OutputReader& reader) {
   const std::vector<double> times = reader.times_s();
   const std::vector<int> rows = reader.coarse_rows(), cols = reader.coarse_cols();
   std::vector<double> ratios;
+  ImprintStats stats;
   for (int t = 0; t < reader.frame_count(); ++t)
-    if (times[std::size_t(t)] >= 1.0 - 1e-9)
+    if (times[std::size_t(t)] >= 1.0 - 1e-9) {
       ratios.push_back(analysis::coarse_line_imprint(lattice, reader.positions(t), rows, cols));
+      if (ratios.back() > stats.worst) {
+        stats.worst = ratios.back();
+        stats.worst_frame = t;
+      }
+    }
   EXPECT_FALSE(ratios.empty());
   if (ratios.empty()) return {};
   std::sort(ratios.begin(), ratios.end());
-  const double above =
-      double(ratios.end() - std::upper_bound(ratios.begin(), ratios.end(), kImprint));
-  return {ratios[ratios.size() / 2], ratios.back(), above / double(ratios.size())};
+  stats.median = ratios[ratios.size() / 2];
+  return stats;
 }
 
 // Dense links of each cell against the coarse links beside them: no longer
@@ -113,9 +116,8 @@ TEST(HybridSeamless, DefaultSceneHasNoImprintAndKeepsEveryFiberWithinOnePercent)
   const std::vector<double> strain = reader.stat("max_strain");
   for (std::size_t t = 0; t < strain.size(); ++t) EXPECT_LE(strain[t], 0.01) << "frame " << t;
   const ImprintStats imprint = imprint_of(reader);
-  EXPECT_LE(imprint.median, kImprint);
-  EXPECT_LE(imprint.share_above, kFramesAboveShare);
-  EXPECT_LE(imprint.worst, kFrameImprint);
+  EXPECT_LE(imprint.median, kMedianImprint);
+  EXPECT_LE(imprint.worst, kFrameImprint) << "frame " << imprint.worst_frame;
   expect_stretch_follows_the_coarse(reader);
 }
 
@@ -140,9 +142,8 @@ TEST_P(HybridShapes, HaveNoImprint) {
   const data::OutputReader reader(dir.file("s.h5"));
   for (double strain : reader.stat("max_strain")) EXPECT_LE(strain, 0.01);
   const ImprintStats imprint = imprint_of(reader);
-  EXPECT_LE(imprint.median, kImprint) << c.name;
-  EXPECT_LE(imprint.share_above, kFramesAboveShare) << c.name;
-  EXPECT_LE(imprint.worst, kFrameImprint) << c.name;
+  EXPECT_LE(imprint.median, kMedianImprint) << c.name;
+  EXPECT_LE(imprint.worst, kFrameImprint) << c.name << ", frame " << imprint.worst_frame;
   expect_stretch_follows_the_coarse(reader);
 }
 
