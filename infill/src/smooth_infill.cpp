@@ -43,6 +43,12 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
         wrinkles);
     coarser_positions_.resize(half.node_count());
     coarser_offsets_.resize(std::size_t(half.rows) * std::size_t(fine.cols));
+    // The coarsest level under finer ones smooths its correction (they inherit it).
+    if (!coarser_->coarser_) coarser_->smooths_ = true;
+  } else {
+    // A lattice that is its own coarsest level smooths only with cells of
+    // 2 kLevelStride links or more (odd strides, no level below).
+    smooths_ = std::min(grid.row_stride, grid.col_stride) >= 2 * kLevelStride;
   }
 }
 
@@ -294,7 +300,7 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
                                     kStepsPerFiber);
   };
   run_timed(times, stages_.projection, relax);
-  if (!coarser_)  // the coarsest level: the correction at the scale of a cell, smoothed
+  if (smooths_)  // the coarsest level: the correction at the scale of a cell, smoothed
     for (int cycle = 0; cycle < kSmoothingCycles; ++cycle) {
       run_timed(times, stages_.projection, [&] { smooth_correction(positions_m); });
       run_timed(times, stages_.projection, relax);

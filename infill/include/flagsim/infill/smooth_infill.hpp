@@ -93,6 +93,10 @@ inline constexpr int kLevelStride = 4;
 /// cycles, 0 (1.19) / 0 (1.14) / 0 (1.20) / 0 (1.29). 1-8 cycles and 2-8 passes
 /// gave 1.13-1.25 on the default scene; the wide flag stays near 1.3 with any
 /// (1.29-1.42: its surface alone, before any projection, gives 1.33 there).
+/// A lattice that is its own coarsest level with cells under 2 kLevelStride
+/// links (33 x 49 from 9 x 13: cells of 4) is not smoothed: its worst frame is
+/// 1.25 without (1.18 with), and the cycles would cost 4x its infill (0.14 ->
+/// 0.57 ms a frame).
 inline constexpr int kSmoothingPasses = 4;
 inline constexpr int kSmoothingCycles = 3;
 /// Gauss-Newton steps per fiber per round (a fiber that converges stops early).
@@ -148,6 +152,7 @@ class SmoothInfill final : public InfillMethod {
   } stages_;
   std::optional<WrinkleParams> wrinkles_;
   std::vector<Vec3> surface_;  ///< this frame's mean surface (3.1), read by 3.5 and the level above
+  bool smooths_ = false;       ///< this level runs the kSmoothingCycles (set by the constructors)
   std::vector<Vec3> correction_, smoothed_;  ///< smooth_correction's work buffers
   std::vector<Vec3> normals_;                ///< 3.5: the surface's normals
   std::vector<double> last_offset_;          ///< 3.5: last frame's offset along its normal, m
