@@ -23,7 +23,10 @@
 //      A dense link may be as long as the coarse physics made the coarse link
 //      it lies along; no slack is invented.
 //  3.4 relaxation: whole-fiber Gauss-Newton projection (fiber_projection.hpp)
-//      until every link is within its band; only pinned nodes are held.
+//      until every link is within its band; only pinned nodes are held. On
+//      the coarsest level its correction is smoothed and projected again
+//      (kSmoothingCycles, below), so that it carries no crease on the coarse
+//      lines up to the finer levels.
 //  3.5 (with [wrinkles]) re-move by the bending feature, on whole fibers:
 //      each row and column's slack on the mean surface, dL = L - c with c the
 //      fiber's length along the surface (the paper's chord |P_j1 - P_jK| of
