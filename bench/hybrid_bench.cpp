@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,8 @@ const std::vector<std::vector<Vec3>>& coarse_trajectory() {
 
 double percentile(std::vector<double> values, double p) {
   std::sort(values.begin(), values.end());
-  return values[std::min(values.size() - 1, std::size_t(p * double(values.size() - 1) + 0.5))];
+  return values[std::min(values.size() - 1,
+                         std::size_t(std::lround(p * double(values.size() - 1))))];
 }
 
 // Args: solver (0 smooth, 1 paper), J, K, frames replayed (0: all).

@@ -45,9 +45,10 @@ std::vector<std::string> with_mode(std::vector<std::string> sets, const std::str
 // The full-lattice references `--reference` names, the first the one every
 // error is measured against.
 std::vector<std::string> references_of(const std::string& reference) {
-  static const std::vector<std::string> kAll = {"mass-spring", "bullet", "implicit", "xpbd"};
-  if (reference == "all") return kAll;
-  if (std::find(kAll.begin(), kAll.end(), reference) == kAll.end())
+  static const std::vector<std::string> every_reference = {"mass-spring", "bullet", "implicit",
+                                                           "xpbd"};
+  if (reference == "all") return every_reference;
+  if (std::find(every_reference.begin(), every_reference.end(), reference) == every_reference.end())
     throw UserError(fmt::format(
         "--reference {}: expected mass-spring, bullet, implicit, xpbd or all", reference));
   return {reference};
@@ -93,6 +94,7 @@ int compare_command(const CompareOptions& options) {
   }
   const Scene hybrid_scene = load_scene(options.scene_path, with_mode(sets, "hybrid"));
   std::vector<Scene> reference_scenes;
+  reference_scenes.reserve(modes.size());
   for (const std::string& mode : modes)
     reference_scenes.push_back(load_scene(options.scene_path, with_mode(sets, mode)));
   check_report_path(options.output);

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cstdio>
+#include <exception>
 #include <string_view>
 
 #include "commands.hpp"
@@ -13,7 +15,7 @@
 #include "flagsim/core/message.hpp"
 #include "flagsim/core/near_miss.hpp"
 #include "flagsim/core/version.hpp"
-#include "flagsim/data/frame_writer.hpp"
+#include "flagsim/data/hdf5_library.hpp"
 #include "flagsim/render/offscreen_context.hpp"
 #include "render_command.hpp"
 
@@ -35,9 +37,7 @@ void add_measure_options(CLI::App* cmd, std::string& scene, std::optional<long l
   cmd->add_option("--set", sets, "Override a scene key: KEY=VALUE (TOML value)");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_main(int argc, char** argv) {
   flagsim::data::skip_hdf5_exit_cleanup();
   CLI::App cli{"flag-sim: flag and cloth simulation (Agui, Nishii & Nakajima 1990 hybrid)",
                "flag-sim"};
@@ -239,4 +239,22 @@ int main(int argc, char** argv) {
                 "out of memory: the lattice or run is too large for this machine");
   }
   return int(ExitCode::kBadInput);
+}
+
+}  // namespace
+
+// Anything run_main does not turn into one of the contract's exit codes is a
+// bug in flag-sim: one error line and exit 1, never an abort (std::terminate).
+// Plain C stdio here: the handler itself must not throw.
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fputs("error: internal error (a bug in flag-sim, please report it): ", stderr);
+    std::fputs(e.what(), stderr);
+    std::fputs("\n", stderr);
+  } catch (...) {
+    std::fputs("error: internal error (a bug in flag-sim, please report it)\n", stderr);
+  }
+  return int(ExitCode::kInternal);
 }

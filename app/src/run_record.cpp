@@ -266,7 +266,7 @@ RunRecord load_record(const std::string& path) {
   RecordIn in(path, ec ? 0 : size);
   if (ec || !in.good()) throw UserError(fmt::format("{}: cannot read the run record", path));
   const auto magic = in.get<std::array<char, 16>>();
-  if (std::string_view(magic.data(), 16) != std::string_view(kRecordMagic, 16))
+  if (std::string_view(magic.data(), 16) != std::string_view(kRecordMagic, sizeof kRecordMagic))
     throw UserError(fmt::format("{}: not a flag-sim run record", path));
   RunRecord record;
   Lattice& l = record.lattice;

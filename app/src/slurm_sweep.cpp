@@ -85,7 +85,7 @@ std::string header(const std::string& name, const std::string& log, const std::s
 std::string submit(const std::vector<std::string>& argv, const std::string& script) {
   std::string output;
   const int code = run_capturing(argv, output);
-  const std::string id = output.substr(0, output.find_first_of(";\n"));
+  std::string id = output.substr(0, output.find_first_of(";\n"));
   if (code != 0 || id.empty() ||
       !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; }))
     throw IoError(fmt::format("sbatch {}: {}", script,

@@ -27,109 +27,13 @@
 #include "report.hpp"
 #include "run_record.hpp"
 #include "slurm_sweep.hpp"
+#include "sweep_grid.hpp"
 
 extern char** environ;
 
 namespace flagsim::app {
 namespace fs = std::filesystem;
 namespace {
-
-struct SweepPoint {
-  std::string label;
-  std::vector<std::string> sets;  ///< what makes this point: mode, coarse, substeps, relax
-};
-
-template <typename T>
-std::vector<T> parse_list(const std::string& flag, const std::string& text,
-                          T (*parse)(const std::string&, const std::string&)) {
-  std::vector<T> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    values.push_back(parse(flag, text.substr(start, comma - start)));
-    start = comma + 1;
-  }
-  return values;
-}
-
-std::pair<int, int> parse_lattice(const std::string& flag, const std::string& item) {
-  static const std::regex pattern(R"(^\s*(\d{1,5})\s*[xX]\s*(\d{1,5})\s*$)");
-  std::smatch m;
-  if (!std::regex_match(item, m, pattern))
-    throw UserError(
-        fmt::format("{} {}: expected coarse lattices as JcxKc, e.g. 5x7,9x13", flag, item));
-  return {std::stoi(m[1]), std::stoi(m[2])};
-}
-
-int parse_count(const std::string& flag, const std::string& item) {
-  static const std::regex pattern(R"(^\s*(\d{1,7})\s*$)");
-  std::smatch m;
-  if (!std::regex_match(item, m, pattern) || std::stoi(m[1]) < 1)
-    throw UserError(
-        fmt::format("{} {}: expected counts of at least 1, comma-separated", flag, item));
-  return std::stoi(m[1]);
-}
-
-std::string parse_infill_solver(const std::string& flag, const std::string& item) {
-  if (item != "smooth" && item != "paper")
-    throw UserError(fmt::format("{} {}: expected infill solvers smooth and/or paper", flag, item));
-  return item;
-}
-
-std::string parse_backend(const std::string& flag, const std::string& item) {
-  if (std::find(kBackends.begin(), kBackends.end(), item) != kBackends.end()) return item;
-  throw UserError(fmt::format(
-      "{} {}: expected backends spring-damper, bullet, implicit and/or xpbd", flag, item));
-}
-
-// Point 0: the mass-spring reference; 1: Bullet on the full lattice; then the
-// hybrid grid, coarse lattice slowest, then backend, substeps, infill solver,
-// relaxation fastest.
-std::vector<SweepPoint> grid_of(const SweepOptions& o) {
-  std::vector<SweepPoint> points = {{"mass-spring reference", {"scene.mode=\"mass-spring\""}},
-                                    {"bullet reference", {"scene.mode=\"bullet\""}}};
-  if (o.coarse.empty()) throw UserError("sweep: --coarse is required (e.g. --coarse 5x7,9x13)");
-  const auto coarse = parse_list<std::pair<int, int>>("--coarse", o.coarse, parse_lattice);
-  const auto substeps = o.substeps.empty() ? std::vector<int>{0}
-                                           : parse_list<int>("--substeps", o.substeps, parse_count);
-  const auto relax =
-      o.relax.empty() ? std::vector<int>{0} : parse_list<int>("--relax", o.relax, parse_count);
-  // Empty: the scene's own infill solver.
-  const auto infill = o.infill.empty()
-                          ? std::vector<std::string>{""}
-                          : parse_list<std::string>("--infill", o.infill, parse_infill_solver);
-  // Empty: the scene's own solver.backend.
-  const auto backends = o.backend.empty()
-                            ? std::vector<std::string>{""}
-                            : parse_list<std::string>("--backend", o.backend, parse_backend);
-  for (const auto& [jc, kc] : coarse)
-    for (const std::string& backend : backends)
-      for (int s : substeps)
-        for (const std::string& solver : infill)
-          // The relaxation cap is the paper solver's; the smooth one gets one point.
-          for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
-            SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
-                         {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
-            if (!backend.empty()) {
-              p.sets.push_back(fmt::format("solver.backend=\"{}\"", backend));
-              p.label += fmt::format(" {}", backend);
-            }
-            if (s > 0) {
-              p.sets.push_back(fmt::format("solver.substeps={}", s));
-              p.label += fmt::format(" substeps {}", s);
-            }
-            if (!solver.empty()) {
-              p.sets.push_back(fmt::format("infill.solver=\"{}\"", solver));
-              p.label += fmt::format(" {}", solver);
-            }
-            if (r > 0) {
-              p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
-              p.label += fmt::format(" relax {}", r);
-            }
-            points.push_back(p);
-          }
-  return points;
-}
 
 std::vector<std::string> base_sets(const SweepOptions& o) {
   std::vector<std::string> sets = o.sets;
@@ -265,9 +169,7 @@ std::vector<std::string> run_children(const std::vector<std::string>& argv, int 
       args.insert(args.end(), {"--point", std::to_string(next), "-o",
                                (dir / fmt::format("point_{}.csv", next)).string(), "--quiet"});
       if (!has_reference_file) args.insert(args.end(), {"--reference-file", reference_file});
-      std::vector<char*> c_args;
-      for (std::string& a : args) c_args.push_back(a.data());
-      c_args.push_back(nullptr);
+      std::vector<char*> c_args = exec_argv(args);
       pid_t pid = 0;
       if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, c_args.data(), environ) != 0)
         throw IoError("sweep: cannot start a worker process");
@@ -313,7 +215,7 @@ int slurm_sweep(const SweepOptions& o) {
     throw UserError("--slurm: runs every point as a Slurm job; leave out --point, --jobs, --merge");
   if (!(o.horizon_s > 0.0))
     throw UserError(fmt::format("--horizon {}: expected a duration > 0 s", o.horizon_s));
-  const std::vector<SweepPoint> grid = grid_of(o);
+  const std::vector<SweepPoint> grid = sweep_grid(o);
   for (const SweepPoint& point : grid) scene_of(o, point);  // checked now, not on the cluster
   check_report_path(o.output);
   if (!o.plot.empty()) check_report_path(o.plot);
@@ -334,7 +236,7 @@ int slurm_sweep(const SweepOptions& o) {
 
 int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   if (o.list) {  // the points, as --point and the CSV number them; nothing runs
-    const std::vector<SweepPoint> grid = grid_of(o);
+    const std::vector<SweepPoint> grid = sweep_grid(o);
     for (const SweepPoint& point : grid) scene_of(o, point);  // each checked, as a run would
     for (std::size_t i = 0; i < grid.size(); ++i)
       fmt::print("{:>3}  {:<40} {}\n", i, grid[i].label, fmt::join(grid[i].sets, " "));
@@ -378,7 +280,7 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   } else {
     if (!(o.horizon_s > 0.0))
       throw UserError(fmt::format("--horizon {}: expected a duration > 0 s", o.horizon_s));
-    const std::vector<SweepPoint> grid = grid_of(o);
+    const std::vector<SweepPoint> grid = sweep_grid(o);
     // Every point's scene is checked before anything runs (a coarse lattice
     // that does not divide the fine one is exit 2 now, not an hour in).
     for (const SweepPoint& point : grid) scene_of(o, point);
@@ -448,6 +350,7 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   // The table compare prints, for the whole sweep (a single --point prints only its CSV row).
   if (!o.point) {
     std::vector<ReportRow> rows;
+    rows.reserve(lines.size());
     for (const std::string& line : lines) rows.push_back(parse_csv_line(line));
     fmt::print("{}", text_table(rows));
   }

@@ -31,6 +31,7 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
 std::vector<int> register_term_stages(const std::vector<std::unique_ptr<ForceTerm>>& terms,
                                       StageTimes& times) {
   std::vector<int> stages;
+  stages.reserve(terms.size());
   for (const auto& term : terms) stages.push_back(times.add(std::string(term->name())));
   return stages;
 }

@@ -11,10 +11,17 @@ extern char** environ;
 
 namespace flagsim {
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, bool pipe_input, bool quiet) {
+std::vector<char*> exec_argv(const std::vector<std::string>& argv) {
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
+  // exec's signature predates const; it does not write through these.
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  return args;
+}
+
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, bool pipe_input, bool quiet) {
+  std::vector<char*> args = exec_argv(argv);
   int fds[2] = {-1, -1};
   if (pipe_input && ::pipe2(fds, O_CLOEXEC) != 0) return;
   posix_spawn_file_actions_t actions;
@@ -59,9 +66,7 @@ int ChildProcess::wait() {
 
 int run_capturing(const std::vector<std::string>& argv, std::string& output) {
   output.clear();
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
+  std::vector<char*> args = exec_argv(argv);
   int fds[2] = {-1, -1};
   if (::pipe2(fds, O_CLOEXEC) != 0) return -1;
   posix_spawn_file_actions_t actions;

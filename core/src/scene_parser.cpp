@@ -152,7 +152,7 @@ std::string apply_override(toml::table& root, const Override& override) {
   const auto equals = assignment.find('=');
   if (equals == std::string::npos || trim(assignment.substr(0, equals)).empty())
     throw UserError(label + ": expected KEY=VALUE with a TOML value, e.g. --set flag.fine=[65,97]");
-  const std::string key = trim(assignment.substr(0, equals));
+  std::string key = trim(assignment.substr(0, equals));  // returned: not const, moved
   const std::string value = trim(assignment.substr(equals + 1));
   check_nesting(key + " = " + value, label);
   toml::table patch;

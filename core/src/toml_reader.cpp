@@ -47,7 +47,7 @@ std::string format_number(double x) {
 }  // namespace
 
 std::string where(const toml::source_region& source) {
-  const std::string path = source.path ? *source.path : std::string("<scene>");
+  std::string path = source.path ? *source.path : std::string("<scene>");
   if (path.starts_with("--")) return path;  // a command-line override, quoted as typed
   if (source.begin.line == 0) return path;
   return fmt::format("{}:{}:{}", path, source.begin.line, source.begin.column);

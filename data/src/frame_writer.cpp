@@ -3,8 +3,6 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/file.h>
-#include <sys/resource.h>
-#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +16,7 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "flagsim/data/disk_room.hpp"
 #include "h5_handle.hpp"
 
 namespace flagsim::data {
@@ -29,7 +28,7 @@ namespace {
 // frame (or, for small rows, 256 frames) at a time, with its `units` attribute
 // (an invalid handle when either cannot be made).
 h5::Handle make_series(hid_t parent, const char* name, hid_t element_type,
-                       std::vector<hsize_t> tail, const char* units) {
+                       const std::vector<hsize_t>& tail, const char* units) {
   std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{1};
   hsize_t row = 1;
   for (hsize_t d : tail) {
@@ -290,16 +289,6 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
     throw IoError(fmt::format("{}: flushing to disk failed (disk full?)", partial_path()));
 }
 
-void skip_hdf5_exit_cleanup() {
-  H5dont_atexit();
-}
-
-std::string hdf5_version() {
-  unsigned major = 0, minor = 0, release = 0;
-  H5get_libversion(&major, &minor, &release);
-  return fmt::format("{}.{}.{}", major, minor, release);
-}
-
 std::optional<std::string> FrameWriter::out_of_room() const {
   // positions and velocities (float32 xyz), strain (float32)
   const std::uintmax_t node_bytes =
@@ -308,21 +297,7 @@ std::optional<std::string> FrameWriter::out_of_room() const {
                                      impl_->coarse_buffer.size() * 4 + impl_->stage_count * 8 + 64;
   const std::uintmax_t pending = std::uintmax_t(frames_ % flush_every_) + 1;
   const std::uintmax_t need = 2 * pending * frame_bytes + (std::uintmax_t(1) << 20);
-  std::uintmax_t room = UINTMAX_MAX;
-  const std::string partial = partial_path();
-  struct statvfs disk {};
-  const fs::path dir = fs::path(partial).has_parent_path() ? fs::path(partial).parent_path() : ".";
-  if (statvfs(dir.c_str(), &disk) == 0) room = std::uintmax_t(disk.f_bavail) * disk.f_frsize;
-  struct rlimit limit {};
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(partial, ec);
-  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && !ec)
-    room = std::min(room, std::uintmax_t(limit.rlim_cur) > size ? limit.rlim_cur - size : 0);
-  if (room >= need) return std::nullopt;
-  return fmt::format(
-      "no room for more frames: {:.1f} MB left on the disk or under the file size "
-      "limit, the next ones need {:.1f} MB",
-      double(room) / 1e6, double(need) / 1e6);
+  return no_room_for(partial_path(), need);
 }
 
 void FrameWriter::finish(const RunStatus& status) {

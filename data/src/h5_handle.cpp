@@ -40,6 +40,7 @@ bool write_string_list_attribute(hid_t object, const char* name,
   Handle space = dataspace(H5Screate_simple(1, &count, nullptr));
   Handle attr = fresh_attribute(object, name, type.get(), space.get());
   std::vector<const char*> texts;
+  texts.reserve(values.size());
   for (const std::string& v : values) texts.push_back(v.c_str());
   return attr.valid() && H5Awrite(attr.get(), type.get(), texts.data()) >= 0;
 }

@@ -31,7 +31,7 @@ void move_edge(const Fiber& fiber, std::ptrdiff_t before_node, std::ptrdiff_t af
     const Vec3 n = normal / std::sqrt(norm2);
     // The side it bowed to before, so that the edge does not jump across
     // its chord between frames; the coarse line's bend when it was straight.
-    const Vec3 was_mid = previous_m[fiber.node(fiber.segments / 2)];
+    const Vec3& was_mid = previous_m[fiber.node(fiber.segments / 2)];
     double side =
         (was_mid - 0.5 * (previous_m[fiber.node(0)] + previous_m[fiber.node(fiber.segments)]))
             .dot(n);

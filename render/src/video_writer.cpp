@@ -19,7 +19,7 @@ std::string find_ffmpeg() {
   std::stringstream dirs(path ? path : "");
   std::string dir;
   while (std::getline(dirs, dir, ':')) {
-    const std::string candidate = (dir.empty() ? "." : dir) + "/ffmpeg";
+    std::string candidate = (dir.empty() ? "." : dir) + "/ffmpeg";
     if (access(candidate.c_str(), X_OK) == 0) return candidate;
   }
   return "";

@@ -54,6 +54,7 @@ TEST(Metrics, AKnownShiftGivesThatShift) {
 TEST(Metrics, ASineDrivenFlyEndGivesItsFrequency) {
   for (double hz : {0.7, 1.3, 2.9, 6.1}) {
     std::vector<double> z;
+    z.reserve(300);
     for (int t = 0; t < 300; ++t)
       z.push_back(0.2 + 0.1 * std::sin(2.0 * std::numbers::pi * hz * t / 30.0 + 0.4));
     EXPECT_NEAR(flap_frequency_hz(z, 30.0), hz, 0.02 * hz) << hz;

@@ -22,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kTiny =
+constexpr const char* kTiny =
     "[scene]\nname = \"tiny\"\nmode = \"hybrid\"\nduration = 0.1\n"
     "[flag]\nsize = [1.5, 1.0]\nfine = [17, 25]\ncoarse = [9, 13]\n[gravity]\n";
 

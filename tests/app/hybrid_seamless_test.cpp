@@ -73,7 +73,8 @@ void expect_stretch_follows_the_coarse(const data::OutputReader& reader) {
   for (int t = 0; t < reader.frame_count(); ++t) {
     const std::vector<Vec3> x = reader.positions(t), c = reader.coarse_positions(t);
     const auto coarse_stretch = [&](int jc, int kc, int djc, int dkc, double rest) {
-      return (c[std::size_t((jc + djc) * kc_count + kc + dkc)] - c[std::size_t(jc * kc_count + kc)])
+      return (c[std::size_t(jc + djc) * std::size_t(kc_count) + std::size_t(kc + dkc)] -
+              c[std::size_t(jc) * std::size_t(kc_count) + std::size_t(kc)])
                      .norm() /
                  rest -
              1.0;

@@ -48,10 +48,9 @@ TEST(Hybrid, CoarseNodesAreWrittenAndTheDenseLatticeFollowsThem) {
     double largest = 0.0;
     for (int j = 0; j < 9; ++j)
       for (int k = 0; k < 13; ++k)
-        largest = std::max(
-            largest,
-            double(
-                (dense[std::size_t(4 * j * 49 + 4 * k)] - coarse[std::size_t(j * 13 + k)]).norm()));
+        largest = std::max(largest, double((dense[std::size_t(4 * j) * 49 + std::size_t(4 * k)] -
+                                            coarse[std::size_t(j) * 13 + std::size_t(k)])
+                                               .norm()));
     EXPECT_NEAR(largest, offset[std::size_t(t)], 1e-6) << t;
   }
   std::vector<double> sorted = offset;

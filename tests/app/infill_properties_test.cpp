@@ -53,13 +53,18 @@ std::unique_ptr<Run> run(const std::string& scene_text) {
 }
 
 // Out-of-plane offset of every node from the straight line between its row's ends, [J][K].
+// Flat index of node (j, k) of a lattice with `cols` columns.
+std::size_t node(int j, int k, int cols) {
+  return std::size_t(j) * std::size_t(cols) + std::size_t(k);
+}
+
 std::vector<std::vector<double>> row_offsets(const std::vector<Vec3>& x, int rows, int cols) {
   std::vector<std::vector<double>> offsets(static_cast<std::size_t>(rows),
                                            std::vector<double>(static_cast<std::size_t>(cols)));
   for (int j = 0; j < rows; ++j) {
-    const Vec3 a = x[std::size_t(j * cols)], b = x[std::size_t(j * cols + cols - 1)];
+    const Vec3 &a = x[node(j, 0, cols)], &b = x[node(j, cols - 1, cols)];
     for (int k = 0; k < cols; ++k)
-      offsets[j][k] = x[std::size_t(j * cols + k)].z() - (a.z() + (b.z() - a.z()) * k / (cols - 1));
+      offsets[j][k] = x[node(j, k, cols)].z() - (a.z() + (b.z() - a.z()) * k / (cols - 1));
   }
   return offsets;
 }
@@ -72,7 +77,7 @@ double wavelength_m(const std::vector<Vec3>& x, int rows, int cols) {
   for (int j = 1; j + 1 < rows; ++j) {
     int changes = 0;
     for (int k = 2; k + 1 < cols; ++k) changes += (offsets[j][k] > 0) != (offsets[j][k - 1] > 0);
-    const double chord = (x[std::size_t(j * cols + cols - 1)] - x[std::size_t(j * cols)]).norm();
+    const double chord = (x[node(j, cols - 1, cols)] - x[node(j, 0, cols)]).norm();
     lengths.push_back(2.0 * chord / (changes + 1));
   }
   std::nth_element(lengths.begin(), lengths.begin() + long(lengths.size() / 2), lengths.end());
@@ -155,15 +160,15 @@ TEST(InfillProperties, Three_WrinkleWavelengthGrowsAsTheFiberRadiusSquared) {
 
 // Bending energy per node, sum of theta^2 of its row and column turning angles.
 std::vector<double> bending_per_node(const std::vector<Vec3>& x, int rows, int cols) {
-  auto at = [&](int j, int k) { return x[std::size_t(j * cols + k)]; };
+  auto at = [&](int j, int k) { return x[node(j, k, cols)]; };
   auto turn = [](const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 u = b - a, v = c - b;
     return std::atan2(u.cross(v).norm(), u.dot(v));
   };
-  std::vector<double> energy(std::size_t(rows * cols), 0.0);
+  std::vector<double> energy(std::size_t(rows) * std::size_t(cols), 0.0);
   for (int j = 0; j < rows; ++j)
     for (int k = 0; k < cols; ++k) {
-      double& e = energy[std::size_t(j * cols + k)];
+      double& e = energy[node(j, k, cols)];
       if (k > 0 && k + 1 < cols) e += std::pow(turn(at(j, k - 1), at(j, k), at(j, k + 1)), 2);
       if (j > 0 && j + 1 < rows) e += std::pow(turn(at(j - 1, k), at(j, k), at(j + 1, k)), 2);
     }

@@ -19,11 +19,11 @@ namespace {
 TEST(ImplicitEuler, HangsWithTheExplicitSagAtOneStepPerFrame) {
   for (PinSet pin : {PinSet::kTop, PinSet::kCorners}) {
     const Scene implicit = test::hanging_cloth("implicit", pin);
-    const Scene explicit_ = test::hanging_cloth("spring-damper", pin);
+    const Scene spring_damper = test::hanging_cloth("spring-damper", pin);
     EXPECT_EQ(ImplicitEuler(implicit).substeps_per_frame(), 1);
-    const int explicit_substeps = SpringDamperIntegrator(explicit_).substeps_per_frame();
+    const int explicit_substeps = SpringDamperIntegrator(spring_damper).substeps_per_frame();
     EXPECT_GE(explicit_substeps, 20) << "the comparison is about large steps";
-    const double spring = test::settled_sag(explicit_);
+    const double spring = test::settled_sag(spring_damper);
     const double backward = test::settled_sag(implicit);
     EXPECT_GT(spring, 0.005) << to_string(pin);
     EXPECT_NEAR(backward, spring, test::kSagRelTol * spring) << to_string(pin);

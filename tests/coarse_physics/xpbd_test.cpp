@@ -15,8 +15,8 @@ namespace flagsim::physics {
 namespace {
 
 TEST(Xpbd, StaticSagConvergesToTheExplicitOneAsSubstepsGrow) {
-  const Scene explicit_ = test::hanging_cloth("spring-damper", PinSet::kTop);
-  const double spring = test::settled_sag(explicit_);
+  const Scene spring_damper = test::hanging_cloth("spring-damper", PinSet::kTop);
+  const double spring = test::settled_sag(spring_damper);
   double previous_error = INFINITY;
   for (int substeps : {2, 8, 32, 128}) {
     Scene scene = test::hanging_cloth("xpbd", PinSet::kTop);

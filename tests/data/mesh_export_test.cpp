@@ -30,7 +30,7 @@ TEST(Pc2Writer, HeaderThenSamplesAsFloat32) {
     cache.finish();
   }
   const std::string bytes = read_bytes(path);
-  ASSERT_EQ(bytes.size(), kPc2HeaderBytes + 2 * 2 * 3 * sizeof(float));
+  ASSERT_EQ(bytes.size(), kPc2HeaderBytes + sizeof(float) * 2 * 2 * 3);
   EXPECT_EQ(bytes.substr(0, 12), std::string("POINTCACHE2\0", 12));
   std::int32_t version = 0, points = 0, samples = 0;
   float start = 0, rate = 0, z = 0;

@@ -19,7 +19,8 @@ TEST(SplineInterpolation, PassesThroughTheCoarseValuesAndReproducesCubics) {
     const double u = n / 8.0;  // coarse index of dense node n
     EXPECT_NEAR(dense[n], 0.3 - 1.2 * u + 0.7 * u * u - 0.2 * u * u * u, 1e-8) << n;
   }
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(m(8 * i, i), 1.0);  // knots exact, not 1 - 1e-15
+  for (int i = 0; i < 5; ++i)
+    EXPECT_EQ(m(Eigen::Index(8) * i, i), 1.0);  // knots exact, not 1 - 1e-15
 }
 
 TEST(SplineInterpolation, FewNodesGiveTheirPolynomialAndEqualSizesTheIdentity) {

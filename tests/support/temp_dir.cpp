@@ -18,7 +18,7 @@ TempDir::~TempDir() {
 }
 
 std::string TempDir::write(const std::string& name, const std::string& text) const {
-  const std::string full = file(name);
+  std::string full = file(name);
   std::ofstream(full) << text;
   return full;
 }

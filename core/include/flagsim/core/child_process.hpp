@@ -32,6 +32,10 @@ class ChildProcess {
   std::FILE* input_ = nullptr;
 };
 
+/// argv as exec and posix_spawn take it: a pointer to each string's
+/// characters, then a null pointer. Valid while `argv` lives unchanged.
+std::vector<char*> exec_argv(const std::vector<std::string>& argv);
+
 /// Runs argv to the end with no input and no output; its exit code (-1: could not start).
 int run_quietly(const std::vector<std::string>& argv);
 

@@ -12,6 +12,7 @@ namespace flagsim {
 /// Exit codes of the flag-sim command line (contract: "Exit codes").
 enum class ExitCode : int {
   kSuccess = 0,
+  kInternal = 1,  ///< a bug in flag-sim (an exception nothing else handled); not in the contract
   kBadInput = 2,
   kDiverged = 3,
   kIoFailure = 4,

@@ -1,0 +1,106 @@
+#include "sweep_grid.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <regex>
+#include <utility>
+
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/scene.hpp"
+
+namespace flagsim::app {
+namespace {
+
+template <typename T>
+std::vector<T> parse_list(const std::string& flag, const std::string& text,
+                          T (*parse)(const std::string&, const std::string&)) {
+  std::vector<T> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    values.push_back(parse(flag, text.substr(start, comma - start)));
+    start = comma + 1;
+  }
+  return values;
+}
+
+std::pair<int, int> parse_lattice(const std::string& flag, const std::string& item) {
+  static const std::regex pattern(R"(^\s*(\d{1,5})\s*[xX]\s*(\d{1,5})\s*$)");
+  std::smatch m;
+  if (!std::regex_match(item, m, pattern))
+    throw UserError(
+        fmt::format("{} {}: expected coarse lattices as JcxKc, e.g. 5x7,9x13", flag, item));
+  return {std::stoi(m[1]), std::stoi(m[2])};
+}
+
+int parse_count(const std::string& flag, const std::string& item) {
+  static const std::regex pattern(R"(^\s*(\d{1,7})\s*$)");
+  std::smatch m;
+  if (!std::regex_match(item, m, pattern) || std::stoi(m[1]) < 1)
+    throw UserError(
+        fmt::format("{} {}: expected counts of at least 1, comma-separated", flag, item));
+  return std::stoi(m[1]);
+}
+
+std::string parse_infill_solver(const std::string& flag, const std::string& item) {
+  if (item != "smooth" && item != "paper")
+    throw UserError(fmt::format("{} {}: expected infill solvers smooth and/or paper", flag, item));
+  return item;
+}
+
+std::string parse_backend(const std::string& flag, const std::string& item) {
+  if (std::find(kBackends.begin(), kBackends.end(), item) != kBackends.end()) return item;
+  throw UserError(fmt::format(
+      "{} {}: expected backends spring-damper, bullet, implicit and/or xpbd", flag, item));
+}
+
+}  // namespace
+
+std::vector<SweepPoint> sweep_grid(const SweepOptions& o) {
+  std::vector<SweepPoint> points = {{"mass-spring reference", {"scene.mode=\"mass-spring\""}},
+                                    {"bullet reference", {"scene.mode=\"bullet\""}}};
+  if (o.coarse.empty()) throw UserError("sweep: --coarse is required (e.g. --coarse 5x7,9x13)");
+  const auto coarse = parse_list<std::pair<int, int>>("--coarse", o.coarse, parse_lattice);
+  const auto substeps = o.substeps.empty() ? std::vector<int>{0}
+                                           : parse_list<int>("--substeps", o.substeps, parse_count);
+  const auto relax =
+      o.relax.empty() ? std::vector<int>{0} : parse_list<int>("--relax", o.relax, parse_count);
+  // Empty: the scene's own infill solver.
+  const auto infill = o.infill.empty()
+                          ? std::vector<std::string>{""}
+                          : parse_list<std::string>("--infill", o.infill, parse_infill_solver);
+  // Empty: the scene's own solver.backend.
+  const auto backends = o.backend.empty()
+                            ? std::vector<std::string>{""}
+                            : parse_list<std::string>("--backend", o.backend, parse_backend);
+  for (const auto& [jc, kc] : coarse)
+    for (const std::string& backend : backends)
+      for (int s : substeps)
+        for (const std::string& solver : infill)
+          // The relaxation cap is the paper solver's; the smooth one gets one point.
+          for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
+            SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
+                         {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
+            if (!backend.empty()) {
+              p.sets.push_back(fmt::format("solver.backend=\"{}\"", backend));
+              p.label += fmt::format(" {}", backend);
+            }
+            if (s > 0) {
+              p.sets.push_back(fmt::format("solver.substeps={}", s));
+              p.label += fmt::format(" substeps {}", s);
+            }
+            if (!solver.empty()) {
+              p.sets.push_back(fmt::format("infill.solver=\"{}\"", solver));
+              p.label += fmt::format(" {}", solver);
+            }
+            if (r > 0) {
+              p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
+              p.label += fmt::format(" relax {}", r);
+            }
+            points.push_back(p);
+          }
+  return points;
+}
+
+}  // namespace flagsim::app
