@@ -1,0 +1,73 @@
+#include "sweep_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "flagsim/core/errors.hpp"
+
+namespace flagsim::app {
+namespace {
+
+SweepOptions lists(std::string coarse, std::string substeps = "", std::string infill = "",
+                   std::string relax = "", std::string backend = "") {
+  SweepOptions o;
+  o.coarse = std::move(coarse);
+  o.substeps = std::move(substeps);
+  o.infill = std::move(infill);
+  o.relax = std::move(relax);
+  o.backend = std::move(backend);
+  return o;
+}
+
+TEST(SweepGrid, TheTwoReferencesFirstThenTheHybridsWithTheCoarseLatticeSlowest) {
+  const std::vector<SweepPoint> grid = sweep_grid(lists("5x7, 9X13", "100,200"));
+  ASSERT_EQ(grid.size(), 6u);
+  EXPECT_EQ(grid[0].label, "mass-spring reference");
+  EXPECT_EQ(grid[0].sets, std::vector<std::string>{"scene.mode=\"mass-spring\""});
+  EXPECT_EQ(grid[1].label, "bullet reference");
+  EXPECT_EQ(grid[2].label, "hybrid 5x7 substeps 100");
+  EXPECT_EQ(grid[2].sets, (std::vector<std::string>{"scene.mode=\"hybrid\"", "flag.coarse=[5,7]",
+                                                    "solver.substeps=100"}));
+  EXPECT_EQ(grid[3].label, "hybrid 5x7 substeps 200");
+  EXPECT_EQ(grid[4].label, "hybrid 9x13 substeps 100");
+  EXPECT_EQ(grid[5].label, "hybrid 9x13 substeps 200");
+}
+
+TEST(SweepGrid, TheRelaxationCapMultipliesOnlyThePaperSolversPoints) {
+  const std::vector<SweepPoint> grid =
+      sweep_grid(lists("9x13", "", "smooth,paper", "100,8000", "spring-damper,xpbd"));
+  std::vector<std::string> labels;
+  for (std::size_t i = 2; i < grid.size(); ++i) labels.push_back(grid[i].label);
+  EXPECT_EQ(labels,
+            (std::vector<std::string>{
+                "hybrid 9x13 spring-damper smooth", "hybrid 9x13 spring-damper paper relax 100",
+                "hybrid 9x13 spring-damper paper relax 8000", "hybrid 9x13 xpbd smooth",
+                "hybrid 9x13 xpbd paper relax 100", "hybrid 9x13 xpbd paper relax 8000"}));
+  EXPECT_EQ(grid.back().sets.back(), "infill.relax_iterations=8000");
+}
+
+TEST(SweepGrid, AnItemItCannotReadIsNamedWithItsFlag) {
+  const auto message = [](const SweepOptions& o) {
+    try {
+      sweep_grid(o);
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(lists("")), "sweep: --coarse is required (e.g. --coarse 5x7,9x13)");
+  EXPECT_EQ(message(lists("9x13,9by13")),
+            "--coarse 9by13: expected coarse lattices as JcxKc, e.g. 5x7,9x13");
+  EXPECT_EQ(message(lists("9x13,")), "--coarse : expected coarse lattices as JcxKc, e.g. 5x7,9x13");
+  EXPECT_EQ(message(lists("9x13", "0")),
+            "--substeps 0: expected counts of at least 1, comma-separated");
+  EXPECT_EQ(message(lists("9x13", "", "fast")),
+            "--infill fast: expected infill solvers smooth and/or paper");
+  EXPECT_EQ(message(lists("9x13", "", "", "", "euler")),
+            "--backend euler: expected backends spring-damper, bullet, implicit and/or xpbd");
+}
+
+}  // namespace
+}  // namespace flagsim::app
