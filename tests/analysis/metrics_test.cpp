@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "tolerances.hpp"
+
 namespace flagsim::analysis {
 namespace {
 
@@ -41,14 +43,14 @@ TEST(Metrics, IdenticalRunsHaveNoError) {
 TEST(Metrics, AKnownShiftGivesThatShift) {
   const Frames a = bobbing(60, 1.3);
   const Frames b = shifted(a, Vec3(0.003, -0.004, 0.0));  // 5 mm
-  EXPECT_NEAR(short_horizon_rms(a, b, 15), 0.005, 1e-12);
-  EXPECT_NEAR(mean_shape_rms(a, b, 30), 0.005, 1e-12);
+  EXPECT_NEAR(short_horizon_rms(a, b, 15), 0.005, test::kRoundOff);
+  EXPECT_NEAR(mean_shape_rms(a, b, 30), 0.005, test::kRoundOff);
   // Only the nodes kept count.
   std::vector<std::uint8_t> keep(a[0].size(), 0);
   std::vector<Vec3> c = a[5];
   c[3] += Vec3(0.0, 0.0, 0.02);
   keep[3] = 1;
-  EXPECT_NEAR(rms_distance(a[5], c, keep), 0.02, 1e-12);
+  EXPECT_NEAR(rms_distance(a[5], c, keep), 0.02, test::kRoundOff);
 }
 
 TEST(Metrics, ASineDrivenFlyEndGivesItsFrequency) {
@@ -57,7 +59,7 @@ TEST(Metrics, ASineDrivenFlyEndGivesItsFrequency) {
     z.reserve(300);
     for (int t = 0; t < 300; ++t)
       z.push_back(0.2 + 0.1 * std::sin(2.0 * std::numbers::pi * hz * t / 30.0 + 0.4));
-    EXPECT_NEAR(flap_frequency_hz(z, 30.0), hz, 0.02 * hz) << hz;
+    EXPECT_NEAR(flap_frequency_hz(z, 30.0), hz, test::kSpectralRelTol * hz) << hz;
   }
   EXPECT_EQ(flap_frequency_hz(std::vector<double>(100, 1.0), 30.0), 0.0);  // no flapping
 }
@@ -66,10 +68,11 @@ TEST(Metrics, StrainDistributionFindsTheStretchedLink) {
   std::vector<Vec3> x = kLattice.rest_positions();
   for (int k = 0; k < kLattice.cols; ++k) x[kLattice.index(8, k)].y() -= 0.1 * kLattice.spacing_y_m;
   const StrainDistribution s = strain_distribution(kLattice, Frames{x});
-  EXPECT_NEAR(s.max, 0.1, 1e-6);  // (kept as float32) the last row's 13 column links, of 212
-  EXPECT_NEAR(s.p99, 0.1, 1e-6);  // 13/212 > 1%
+  EXPECT_NEAR(s.max, 0.1,
+              test::kFloat32);  // (kept as float32) the last row's 13 column links, of 212
+  EXPECT_NEAR(s.p99, 0.1, test::kFloat32);  // 13/212 > 1%
   const StrainDistribution rest = strain_distribution(kLattice, Frames{kLattice.rest_positions()});
-  EXPECT_NEAR(rest.max, 0.0, 1e-12);
+  EXPECT_NEAR(rest.max, 0.0, test::kRoundOff);
 }
 
 TEST(Metrics, WrinkleWavelengthOfASineWrinkledSheet) {
@@ -77,7 +80,8 @@ TEST(Metrics, WrinkleWavelengthOfASineWrinkledSheet) {
   for (double wavelength : {0.25, 0.5}) {
     std::vector<Vec3> x = fine.rest_positions();
     for (Vec3& p : x) p.z() = 0.004 * std::sin(2.0 * std::numbers::pi * p.x() / wavelength);
-    EXPECT_NEAR(wrinkle_wavelength_m(fine, Frames{x}, 0), wavelength, 0.1 * wavelength);
+    EXPECT_NEAR(wrinkle_wavelength_m(fine, Frames{x}, 0), wavelength,
+                test::kWavelengthRelTol * wavelength);
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "process.hpp"
 #include "temp_dir.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::test {
 namespace {
@@ -76,7 +77,7 @@ TEST(Compare, WritesTheContractColumnsForEachRun) {
   EXPECT_GT(number(2, "infill_ms"), 0.0);
   EXPECT_GT(number(2, "physics_ms"), 0.0);
   EXPECT_NEAR(number(2, "physics_ms") + number(2, "infill_ms"), number(2, "ms_per_frame"),
-              1e-4 * number(2, "ms_per_frame") + 1e-5);
+              test::kCsvRelTol * number(2, "ms_per_frame") + test::kCsvAbs_ms);
 }
 
 // --reference all: every full-lattice integrator, implicit and XPBD at more
@@ -127,7 +128,7 @@ TEST(Compare, AllReferencesAndTheSpeedupAgainstTheBestThatMatchesTheHybridsStrai
   EXPECT_EQ(csv[hybrid][column(csv, "best_reference")], csv[best][label]);
   EXPECT_NEAR(std::stod(csv[hybrid][column(csv, "speedup_vs_best_reference")]),
               std::stod(csv[best][ms]) / std::stod(csv[hybrid][ms]),
-              1e-4 * std::stod(csv[best][ms]) / std::stod(csv[hybrid][ms]));
+              test::kCsvRelTol * std::stod(csv[best][ms]) / std::stod(csv[hybrid][ms]));
   EXPECT_NE(result.out.find("faster than the fastest reference with p99 strain at most"),
             std::string::npos)
       << result.out;
@@ -158,7 +159,9 @@ TEST(Compare, FlapIsMeasuredAtTheFlyEndWhicheverEdgeIsPinned) {
   ASSERT_EQ(flap["left"].size(), 3u);
   for (std::size_t run = 0; run < 3; ++run) {
     EXPECT_GT(flap["right"][run], 1.0) << run;
-    EXPECT_NEAR(flap["right"][run], flap["left"][run], 0.25 * flap["left"][run]) << run;
+    EXPECT_NEAR(flap["right"][run], flap["left"][run],
+                test::kMirroredFlapRelTol * flap["left"][run])
+        << run;
   }
 }
 

@@ -9,6 +9,7 @@
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
 #include "temp_dir.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::test {
 namespace {
@@ -51,7 +52,7 @@ TEST(Hybrid, CoarseNodesAreWrittenAndTheDenseLatticeFollowsThem) {
         largest = std::max(largest, double((dense[std::size_t(4 * j) * 49 + std::size_t(4 * k)] -
                                             coarse[std::size_t(j) * 13 + std::size_t(k)])
                                                .norm()));
-    EXPECT_NEAR(largest, offset[std::size_t(t)], 1e-6) << t;
+    EXPECT_NEAR(largest, offset[std::size_t(t)], test::kFloat32) << t;
   }
   std::vector<double> sorted = offset;
   std::sort(sorted.begin(), sorted.end());

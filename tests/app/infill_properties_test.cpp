@@ -10,6 +10,7 @@
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
 #include "temp_dir.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::test {
 namespace {
@@ -152,9 +153,9 @@ TEST(InfillProperties, Three_WrinkleWavelengthGrowsAsTheFiberRadiusSquared) {
     srr += (log_r[i] - mr) * (log_r[i] - mr);
   }
   const double slope = srw / srr;
-  EXPECT_NEAR(slope, 2.0, 0.5) << "wavelengths " << std::exp(log_wavelength[0]) << ", "
-                               << std::exp(log_wavelength[1]) << ", " << std::exp(log_wavelength[2])
-                               << " m";
+  EXPECT_NEAR(slope, 2.0, test::kWavelengthSlopeTol)
+      << "wavelengths " << std::exp(log_wavelength[0]) << ", " << std::exp(log_wavelength[1])
+      << ", " << std::exp(log_wavelength[2]) << " m";
   RecordProperty("slope", std::to_string(slope));
 }
 

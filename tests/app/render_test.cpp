@@ -13,6 +13,7 @@
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
 #include "temp_dir.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::test {
 namespace {
@@ -111,7 +112,8 @@ TEST(Render, VideoContainersAndTheirFrameRate) {
   const ProcessResult duration = run_process(
       "/usr/bin/ffprobe",
       {"-v", "error", "-show_entries", "format=duration", "-of", "csv=p=0", "v.mp4"}, dir.path());
-  EXPECT_NEAR(std::stod(duration.out.empty() ? "0" : duration.out), 0.5, 1e-3) << duration.err;
+  EXPECT_NEAR(std::stod(duration.out.empty() ? "0" : duration.out), 0.5, test::kVideoDuration_s)
+      << duration.err;
 }
 
 // A name with another extension is refused, not made into a directory of

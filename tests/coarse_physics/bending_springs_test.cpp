@@ -7,6 +7,7 @@
 
 #include "finite_difference.hpp"
 #include "scene_fixtures.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::physics {
 namespace {
@@ -33,7 +34,7 @@ TEST(BendingSprings, EnergyMatchesContinuumAtAnyResolution) {
     const double continuum = 0.5 * rigidity * kappa * kappa * 1.0 * 0.8;
     // The discrete sum leaves out half a segment at each end: (K-2)/(K-1) of the length.
     const double covered = double(cols - 2) / (cols - 1);
-    EXPECT_NEAR(bending.energy(x), continuum * covered, 0.01 * continuum) << cols;
+    EXPECT_NEAR(bending.energy(x), continuum * covered, test::kContinuumRelTol * continuum) << cols;
   }
 }
 

@@ -29,7 +29,8 @@ TEST(BulletLinkStiffness, SharesTheSpringsFractionAmongThePasses) {
 // 9.32 mm) and 0.24% by the corners (53.89 vs 53.76 mm), each held to a
 // little more than that.
 TEST(BulletCloth, HangsWithTheSameSagAsTheSpringDamper) {
-  for (const auto& [pin, tolerance] : {std::pair{PinSet::kTop, 0.02}, {PinSet::kCorners, 0.004}}) {
+  for (const auto& [pin, tolerance] : {std::pair{PinSet::kTop, test::kBulletSagTopRelTol},
+                                       {PinSet::kCorners, test::kBulletSagCornersRelTol}}) {
     const double spring = test::settled_sag(test::hanging_cloth("spring-damper", pin));
     const double bullet = test::settled_sag(test::hanging_cloth("bullet", pin));
     EXPECT_GT(spring, 0.005) << to_string(pin);  // the elastic stretch is what is compared
@@ -82,8 +83,8 @@ TEST(BulletCloth, PinsFollowThePole) {
   cloth.advance_frame(nullptr);
   const Lattice& lattice = cloth.model().lattice;
   EXPECT_NEAR(cloth.state().x_m[lattice.index(1, 0)].y(), lattice.rest_position(1, 0).y() + 0.1,
-              1e-9);
-  EXPECT_NEAR(cloth.state().time_s, 1.0 / 8.0, 1e-15);
+              test::kAccumulatedRoundOff);
+  EXPECT_NEAR(cloth.state().time_s, 1.0 / 8.0, test::kExact);
 }
 
 TEST(BulletCloth, StiffestLinkClosesAQuarterOfItsErrorPerSubstep) {
@@ -101,7 +102,7 @@ TEST(BulletCloth, StiffestLinkClosesAQuarterOfItsErrorPerSubstep) {
                        (model.pinned[b] ? 0.0 : 1.0 / model.mass_kg[b]);
       f_max = std::max(f_max, k * w * cloth.stable_substep_s() * cloth.stable_substep_s());
     });
-  EXPECT_NEAR(f_max, 1.0, 1e-9);
+  EXPECT_NEAR(f_max, 1.0, test::kAccumulatedRoundOff);
 }
 
 TEST(BulletCloth, OnlyTheEffectsTheSceneCallsFor) {

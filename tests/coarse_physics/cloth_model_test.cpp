@@ -6,6 +6,7 @@
 
 #include "flagsim/coarse_physics/stretch_springs.hpp"
 #include "scene_fixtures.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::physics {
 namespace {
@@ -14,7 +15,7 @@ TEST(ClothModel, MassIsDensityTimesAreaAtAnyResolution) {
   for (auto [rows, cols] : {std::pair{2, 2}, {5, 7}, {33, 49}}) {
     const ClothModel model = make_cloth_model(test::small_cloth(rows, cols));
     const double total = std::accumulate(model.mass_kg.begin(), model.mass_kg.end(), 0.0);
-    EXPECT_NEAR(total, 0.2 * 1.0 * 0.8, 1e-12) << rows << "x" << cols;
+    EXPECT_NEAR(total, 0.2 * 1.0 * 0.8, test::kRoundOff) << rows << "x" << cols;
   }
 }
 
@@ -28,7 +29,8 @@ TEST(ClothModel, UniaxialStretchStoresTheContinuumEnergy) {
     const double eps = 0.01;
     for (Vec3& p : x) p.x() *= 1.0 + eps;
     const double expected = 0.5 * scene.flag.stretch_modulus_n_m * eps * eps * 1.0 * 0.8;
-    EXPECT_NEAR(StretchSprings(model).energy(x), expected, 1e-12 * expected + 1e-15);
+    EXPECT_NEAR(StretchSprings(model).energy(x), expected,
+                test::kRoundOff * expected + test::kExact);
   }
 }
 
@@ -40,7 +42,7 @@ TEST(ClothModel, SimpleShearStoresTheShearModulusEnergy) {
   const double gamma = 1e-3;
   for (Vec3& p : x) p.x() += gamma * p.y();
   const double expected = 0.5 * scene.flag.shear_modulus_n_m * gamma * gamma * 1.0 * 0.8;
-  EXPECT_NEAR(StretchSprings(model).energy(x), expected, 0.01 * expected);
+  EXPECT_NEAR(StretchSprings(model).energy(x), expected, test::kContinuumRelTol * expected);
 }
 
 TEST(ClothModel, PinSets) {

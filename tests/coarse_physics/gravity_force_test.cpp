@@ -5,6 +5,7 @@
 #include "finite_difference.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "scene_fixtures.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::physics {
 namespace {
@@ -23,7 +24,7 @@ TEST(GravityForce, TotalIsWeightOfTheCloth) {
   gravity.add_forces(x, v, f);
   Vec3 total = Vec3::Zero();
   for (const Vec3& fi : f) total += fi;
-  EXPECT_NEAR(total.y(), -9.81 * 0.2 * 1.0 * 0.8, 1e-12);
+  EXPECT_NEAR(total.y(), -9.81 * 0.2 * 1.0 * 0.8, test::kRoundOff);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "tolerances.hpp"
+
 namespace flagsim::physics {
 namespace {
 
@@ -29,7 +31,7 @@ TEST(InitialShape, SameShapeAtAnyResolution) {
   const auto zf = smooth_perturbation(fine, 3, 0.02);
   for (int j = 0; j < coarse.rows; ++j)
     for (int k = 0; k < coarse.cols; ++k)
-      EXPECT_NEAR(zc[coarse.index(j, k)], zf[fine.index(2 * j, 2 * k)], 1e-15);
+      EXPECT_NEAR(zc[coarse.index(j, k)], zf[fine.index(2 * j, 2 * k)], test::kExact);
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <random>
 
+#include "tolerances.hpp"
+
 namespace flagsim::physics {
 namespace {
 
@@ -58,9 +60,10 @@ TEST(WindField, GustsScaleTheMeanPeriodically) {
   wind.gusts = Gusts{0.3, 4.0};
   const WindField field(wind, 3);
   EXPECT_FALSE(field.steady());
-  EXPECT_NEAR(field.velocity(Vec3::Zero(), 1.0).x(), 13.0, 1e-12);  // a quarter period: the crest
-  EXPECT_NEAR(field.velocity(Vec3::Zero(), 3.0).x(), 7.0, 1e-12);
-  EXPECT_NEAR(field.velocity(Vec3(5, 1, 0), 4.0).x(), 10.0, 1e-12);
+  EXPECT_NEAR(field.velocity(Vec3::Zero(), 1.0).x(), 13.0,
+              test::kRoundOff);  // a quarter period: the crest
+  EXPECT_NEAR(field.velocity(Vec3::Zero(), 3.0).x(), 7.0, test::kRoundOff);
+  EXPECT_NEAR(field.velocity(Vec3(5, 1, 0), 4.0).x(), 10.0, test::kRoundOff);
 }
 
 TEST(WindField, TurbulenceHasTheAskedMeanAndIntensity) {
@@ -70,9 +73,10 @@ TEST(WindField, TurbulenceHasTheAskedMeanAndIntensity) {
     const WindField field(turbulent(intensity, 1.0), 7);
     const Sample s = sample(field);
     // The mean of |u| grows a little with the cross-wind fluctuations: 10% holds.
-    EXPECT_NEAR(s.mean_speed, 10.0, 1.0) << intensity;
-    EXPECT_NEAR(s.std_m_s.x() / s.mean_speed, intensity, 0.1 * intensity);
-    for (int c = 1; c < 3; ++c) EXPECT_NEAR(s.std_m_s[c] / 10.0, intensity, 0.25 * intensity) << c;
+    EXPECT_NEAR(s.mean_speed, 10.0, test::kTurbulenceMeanAbs_m_s) << intensity;
+    EXPECT_NEAR(s.std_m_s.x() / s.mean_speed, intensity, test::kTurbulenceAlongRelTol * intensity);
+    for (int c = 1; c < 3; ++c)
+      EXPECT_NEAR(s.std_m_s[c] / 10.0, intensity, test::kTurbulenceAcrossRelTol * intensity) << c;
   }
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fiber_fixtures.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::infill {
 namespace {
@@ -32,9 +33,9 @@ TEST(LayArc, EveryLinkHasItsRestLengthAndTheArcBulgesToTheGivenSide) {
     EXPECT_EQ(x[8], Vec3(0.8 * (1.0 - slack), 0.0, 0.0));  // ends untouched
     for (int i = 1; i < 8; ++i) {
       EXPECT_LT(x[i].z(), 0.0) << slack;  // toward the bow's part across the chord
-      EXPECT_NEAR(x[i].y(), 0.0, 1e-12);
+      EXPECT_NEAR(x[i].y(), 0.0, flagsim::test::kRoundOff);
     }
-    EXPECT_NEAR(x[4].x(), 0.5 * x[8].x(), 1e-12);  // symmetric
+    EXPECT_NEAR(x[4].x(), 0.5 * x[8].x(), flagsim::test::kRoundOff);  // symmetric
   }
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "flagsim/core/strain.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::infill {
 namespace {
@@ -92,7 +93,8 @@ TEST(FiberProjection, ABandWiderThanOneLetsTheLinkStretch) {
   ASSERT_TRUE(projection.project(x, 1e-6, 20, 3).converged);
   for (int j = 0; j < 5; ++j)
     for (int k = 0; k < 4; ++k)
-      EXPECT_NEAR((x[lattice.index(j, k + 1)] - x[lattice.index(j, k)]).norm() / 0.25, 1.03, 1e-5);
+      EXPECT_NEAR((x[lattice.index(j, k + 1)] - x[lattice.index(j, k)]).norm() / 0.25, 1.03,
+                  test::kProjectedEdge);
 }
 
 // An unconverged projection reports how far the movable links are outside
@@ -111,7 +113,7 @@ TEST(FiberProjection, TheResidualCountsOnlyLinksItCanMove) {
   x[lattice.index(2, 8)].x() += 0.2 * lattice.spacing_x_m;  // one free link, 20% long
   const ProjectionReport capped = projection.project(x, 1e-6, 0, 1);
   EXPECT_FALSE(capped.converged);
-  EXPECT_NEAR(capped.worst_excess, 0.2 - 0.005, 1e-9);
+  EXPECT_NEAR(capped.worst_excess, 0.2 - 0.005, test::kAccumulatedRoundOff);
   const ProjectionReport done = projection.project(x, 1e-6, 50, 4);
   EXPECT_TRUE(done.converged);
   EXPECT_EQ(done.worst_excess, 0.0);

@@ -9,6 +9,7 @@
 #include "fiber_fixtures.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/infill/cell_grid.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::infill {
 namespace {
@@ -29,9 +30,9 @@ TEST(InitialMove, WeightedInitialMoveKeepsTheMiddleAndFollowsTheEnds) {
   x[0] += Vec3(0, 0.2, 0);
   x[8] += Vec3(0, 0.2, 0);
   weighted_initial_move(fiber, x, previous);
-  EXPECT_NEAR(x[4].y(), 0.0, 1e-15);        // the middle has weight 0
-  EXPECT_NEAR(x[2].y(), 0.5 * 0.2, 1e-15);  // a quarter of the way: weight 1/2
-  EXPECT_NEAR(x[1].y(), 0.75 * 0.2, 1e-15);
+  EXPECT_NEAR(x[4].y(), 0.0, flagsim::test::kExact);        // the middle has weight 0
+  EXPECT_NEAR(x[2].y(), 0.5 * 0.2, flagsim::test::kExact);  // a quarter of the way: weight 1/2
+  EXPECT_NEAR(x[1].y(), 0.75 * 0.2, flagsim::test::kExact);
 }
 
 }  // namespace
@@ -95,8 +96,8 @@ TEST(InitialMove, ACellThatStaysIsThePapersWeightedMove) {
   initial_move_cells(lattice, grid, x, previous);
   // Node (1, 4): its column's ends moved +0.02 (top) and +0.02 (bottom), weight
   // 0.75; its row's ends did not move.
-  EXPECT_NEAR(x[lattice.index(1, 4)].z(), 0.5 * 0.75 * 0.02, 1e-12);
-  EXPECT_NEAR(x[lattice.index(4, 4)].z(), 0.0, 1e-12);  // the middle: weight 0
+  EXPECT_NEAR(x[lattice.index(1, 4)].z(), 0.5 * 0.75 * 0.02, flagsim::test::kRoundOff);
+  EXPECT_NEAR(x[lattice.index(4, 4)].z(), 0.0, flagsim::test::kRoundOff);  // the middle: weight 0
 }
 
 }  // namespace

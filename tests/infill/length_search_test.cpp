@@ -7,6 +7,7 @@
 
 #include "fiber_fixtures.hpp"
 #include "flagsim/infill/initial_move.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::infill {
 namespace {
@@ -24,7 +25,7 @@ TEST(LengthSearch, LengthSearchWalksTowardTheTargetsWhileTheLengthImproves) {
   weighted_initial_move(fiber, x, previous);
   ASSERT_GT(fiber.length_m(x), 0.8 * 1.01);
   EXPECT_EQ(length_search(fiber, x, previous, 0.005), 1.0);
-  EXPECT_NEAR(fiber.length_m(x), 0.8, 1e-12);
+  EXPECT_NEAR(fiber.length_m(x), 0.8, flagsim::test::kRoundOff);
   // Already at its rest length: nothing moves.
   const std::vector<Vec3> before = x;
   EXPECT_EQ(length_search(fiber, x, previous, 0.005), 0.0);

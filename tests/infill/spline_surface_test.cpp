@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "tolerances.hpp"
+
 namespace flagsim::infill {
 namespace {
 
@@ -17,7 +19,7 @@ TEST(SplineInterpolation, PassesThroughTheCoarseValuesAndReproducesCubics) {
   const Eigen::VectorXd dense = m * coarse;
   for (int n = 0; n < 33; ++n) {
     const double u = n / 8.0;  // coarse index of dense node n
-    EXPECT_NEAR(dense[n], 0.3 - 1.2 * u + 0.7 * u * u - 0.2 * u * u * u, 1e-8) << n;
+    EXPECT_NEAR(dense[n], 0.3 - 1.2 * u + 0.7 * u * u - 0.2 * u * u * u, test::kSplineSolve) << n;
   }
   for (int i = 0; i < 5; ++i)
     EXPECT_EQ(m(Eigen::Index(8) * i, i), 1.0);  // knots exact, not 1 - 1e-15
@@ -27,10 +29,10 @@ TEST(SplineInterpolation, FewNodesGiveTheirPolynomialAndEqualSizesTheIdentity) {
   const Eigen::MatrixXd line = spline_interpolation_matrix(2, 9);
   const Eigen::MatrixXd parabola = spline_interpolation_matrix(3, 9);
   for (int n = 0; n < 9; ++n) {
-    EXPECT_NEAR(line(n, 0), 1.0 - n / 8.0, 1e-12) << n;
-    EXPECT_NEAR(line(n, 1), n / 8.0, 1e-12) << n;
+    EXPECT_NEAR(line(n, 0), 1.0 - n / 8.0, test::kRoundOff) << n;
+    EXPECT_NEAR(line(n, 1), n / 8.0, test::kRoundOff) << n;
     const double u = n / 4.0;  // y = u^2 through (0, 0), (1, 1), (2, 4)
-    EXPECT_NEAR(parabola(n, 1) + 4 * parabola(n, 2), u * u, 1e-12) << n;
+    EXPECT_NEAR(parabola(n, 1) + 4 * parabola(n, 2), u * u, test::kRoundOff) << n;
   }
   EXPECT_TRUE(spline_interpolation_matrix(7, 7).isIdentity());
 }
@@ -84,8 +86,8 @@ TEST(SplineInterpolation, IsAccurateAtStride64) {
   const Eigen::VectorXd flat = m * line, curved = m * cubic;
   for (int n = 0; n < 769; ++n) {
     const double u = n / 64.0;
-    EXPECT_NEAR(flat[n], 0.125 * u, 1e-10) << n;
-    EXPECT_NEAR(curved[n], 0.01 * u * u * u - 0.1 * u * u + 0.125 * u, 1e-9) << n;
+    EXPECT_NEAR(flat[n], 0.125 * u, test::kSplineSolve) << n;
+    EXPECT_NEAR(curved[n], 0.01 * u * u * u - 0.1 * u * u + 0.125 * u, test::kSplineSolve) << n;
   }
 }
 

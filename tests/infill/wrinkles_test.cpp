@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "flagsim/infill/relax.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::infill {
 namespace {
@@ -14,9 +15,10 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 TEST(Wrinkles, TurningAngle) {
-  EXPECT_NEAR(turning_angle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)), 0.0, 1e-15);
+  EXPECT_NEAR(turning_angle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)), 0.0, test::kExact);
   EXPECT_NEAR(turning_angle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0)), kPi / 2, 1e-15);
-  EXPECT_NEAR(turning_angle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 1)), kPi / 4, 1e-15);
+  EXPECT_NEAR(turning_angle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 1)), kPi / 4,
+              flagsim::test::kExact);
 }
 
 TEST(Wrinkles, TurningAngleMatchesTheSecondFiniteDifference) {
@@ -33,7 +35,9 @@ TEST(Wrinkles, TurningAngleMatchesTheSecondFiniteDifference) {
     for (int i = 1; i < 20; ++i) {
       const Vec3 a = at((i - 1) * h), b = at(i * h), c = at((i + 1) * h);
       const double finite_difference = (c - 2.0 * b + a).norm() / h;
-      EXPECT_NEAR(turning_angle(a, b, c), finite_difference, 0.01 * finite_difference) << h;
+      EXPECT_NEAR(turning_angle(a, b, c), finite_difference,
+                  flagsim::test::kSecondDifferenceRelTol * finite_difference)
+          << h;
     }
   }
 }
@@ -65,7 +69,7 @@ TEST(Wrinkles, BendingEnergyOfAnArcIsTheSumOfEquationOne) {
   const Fiber fiber{0, 1, segments, h};
   // Nodes at arc-length steps h: every turning angle is exactly h / R.
   EXPECT_NEAR(fiber_bending_energy(fiber, x, k_r4),
-              (segments - 1) * k_r4 * (h / radius) * (h / radius), 1e-12);
+              (segments - 1) * k_r4 * (h / radius) * (h / radius), test::kRoundOff);
 }
 
 TEST(Wrinkles, BendingEnergyOfAWaveMatchesTheContinuum) {
@@ -77,13 +81,14 @@ TEST(Wrinkles, BendingEnergyOfAWaveMatchesTheContinuum) {
   const double q = m * kPi / chord;
   const double continuum =
       k_r4 * (chord / segments) * 0.5 * amplitude * amplitude * std::pow(q, 4) * chord;
-  EXPECT_NEAR(fiber_bending_energy(fiber, x, k_r4), continuum, 0.02 * continuum);
+  EXPECT_NEAR(fiber_bending_energy(fiber, x, k_r4), continuum,
+              test::kWaveContinuumRelTol * continuum);
 }
 
 TEST(Wrinkles, TargetEnergyIsEquationThirteenPerUnitLength) {
   const Fiber fiber{0, 1, 10, 0.1};  // rest length 1.0
   std::vector<Vec3> x = wave(10, 0.8, 0.0, 1);
-  EXPECT_NEAR(fiber_target_energy(fiber, x, 2.0), 2.0 * 0.1 * 0.2 * 0.2, 1e-15);
+  EXPECT_NEAR(fiber_target_energy(fiber, x, 2.0), 2.0 * 0.1 * 0.2 * 0.2, test::kExact);
 }
 
 // A compressed fiber (chord 0.8 of its rest length 1.0) with a small bulge,
@@ -96,7 +101,7 @@ int half_waves_after_rewrinkle(double radius_m, int segments = 96) {
   params.k_prime = 1.0;
   EXPECT_TRUE(rewrinkle_fiber(fiber, x, Vec3(0, 0, 1), params));
   relax_fiber(fiber, x, 2000, 1e-4);
-  EXPECT_NEAR(fiber.length_m(x), 1.0, 0.01);  // property 1 along the fiber
+  EXPECT_NEAR(fiber.length_m(x), 1.0, test::kFiberLengthRelTol);  // property 1 along the fiber
   int changes = 0;
   for (int i = 2; i < segments; ++i)
     if ((x[i].z() > 0) != (x[i - 1].z() > 0)) ++changes;
@@ -123,8 +128,9 @@ TEST(Wrinkles, ReLayingIsIdempotentAndToleranceLeavesBalancedFibers) {
   ASSERT_TRUE(rewrinkle_fiber(fiber, x, Vec3(0, 0, 1), params));
   // The laid wave keeps the fiber's rest length and spaces the nodes evenly (the
   // nodes sit on the arc, whose chords are shorter by ~ (curvature h)^2 / 24).
-  EXPECT_NEAR(fiber.length_m(x), 1.0, 1e-3);
-  for (int i = 0; i < 96; ++i) EXPECT_NEAR((x[i + 1] - x[i]).norm(), 1.0 / 96, 0.005 / 96);
+  EXPECT_NEAR(fiber.length_m(x), 1.0, test::kRelaidLengthRelTol);
+  for (int i = 0; i < 96; ++i)
+    EXPECT_NEAR((x[i + 1] - x[i]).norm(), 1.0 / 96, test::kRelaidLinkRelTol / 96);
   // Default tolerance 0: laid again, the same shape comes back (persistence).
   const std::vector<Vec3> laid = x;
   ASSERT_TRUE(rewrinkle_fiber(fiber, x, Vec3(0, 0, 1), params));
