@@ -111,8 +111,7 @@ int compare_command(const CompareOptions& options) {
   const RunRecord hybrid = record_run(hybrid_scene, &hybrid_progress);
   Progress tracking_progress(show, int(hybrid.frames.size()), "tracking");
   const RunRecord tracking = record_tracking(hybrid_scene, hybrid, &tracking_progress);
-  Scene tracking_scene = hybrid_scene;
-  tracking_scene.mode = Mode::kMassSpring;
+  const Scene tracking_scene = in_mode(hybrid_scene, Mode::kMassSpring);
   const double hybrid_p99 = describe(hybrid_scene, hybrid, hybrid, nullptr, window).p99_strain;
 
   std::vector<ReferenceRun> references;
@@ -129,7 +128,7 @@ int compare_command(const CompareOptions& options) {
                                     : fmt::format("reference ({})", modes[m]);
       references.push_back({scene, std::move(record), label});
       if (!steps_by_accuracy(modes[m]) || good || doubling == kSubstepDoublings) break;
-      scene.solver.substeps = 2 * ran;  // from what it ran at (XPBD's minimum may be higher)
+      scene = with_substeps(scene, 2 * ran);  // from what it ran at (XPBD's minimum may be higher)
     }
   }
 

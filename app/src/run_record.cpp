@@ -95,8 +95,7 @@ RunRecord record_run(const Scene& scene, Progress* progress) {
 }
 
 RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress* progress) {
-  Scene full = scene;
-  full.mode = Mode::kMassSpring;
+  const Scene full = in_mode(scene, Mode::kMassSpring);
   physics::SpringDamperSolver solver(full);
   physics::ClothState state = solver.initial_state();
   RunRecord record;

@@ -1,5 +1,6 @@
 #include "flagsim/core/scene.hpp"
 
+#include <cassert>
 #include <cmath>
 
 namespace flagsim {
@@ -81,6 +82,33 @@ int paper_relax_sweeps_of(const Scene& scene) {
   // needs ~1400 Gauss-Seidel passes on average, a few frames over 5000; 8000
   // kept the dense strain under 1% on every frame.
   return scene.mode == Mode::kInfill ? 1000 : 8000;
+}
+
+Scene in_mode(const Scene& scene, Mode mode) {
+  Scene variant = scene;
+  variant.mode = mode;
+  return variant;
+}
+
+Scene with_substeps(const Scene& scene, int substeps) {
+  Scene variant = scene;
+  variant.solver.substeps = substeps;
+  return variant;
+}
+
+Scene with_resolved_backend(const Scene& scene) {
+  Scene variant = scene;
+  variant.solver.backend = backend_of(scene);
+  return variant;
+}
+
+Scene on_coarse_lattice(const Scene& scene) {
+  assert(scene.flag.coarse.has_value());
+  Scene coarse = scene;
+  coarse.flag.fine_rows = (*scene.flag.coarse)[0];
+  coarse.flag.fine_cols = (*scene.flag.coarse)[1];
+  coarse.flag.coarse.reset();
+  return coarse;
 }
 
 }  // namespace flagsim

@@ -26,9 +26,7 @@ std::vector<NamedNumber> stepping_numbers(const physics::ClothIntegrator& physic
 // The integrator the scene's mode runs (backend_of: a full-lattice mode names
 // its own, hybrid follows solver.backend).
 std::unique_ptr<physics::ClothIntegrator> integrator_for(const Scene& scene) {
-  Scene chosen = scene;
-  chosen.solver.backend = backend_of(scene);
-  return physics::make_integrator(chosen);
+  return physics::make_integrator(with_resolved_backend(scene));
 }
 
 // What the summary line says of an integrator's stepping.
@@ -183,22 +181,12 @@ class InfillSimulation final : public Simulation {
   int frame_ = 0;
 };
 
-// The scene's cloth on its coarse lattice: same continuum parameters, so the
-// same cloth (masses and springs follow the spacing).
-Scene coarse_scene_of(const Scene& scene) {
-  Scene coarse = scene;
-  coarse.flag.fine_rows = (*scene.flag.coarse)[0];
-  coarse.flag.fine_cols = (*scene.flag.coarse)[1];
-  coarse.flag.coarse.reset();
-  return coarse;
-}
-
 // mode "hybrid": the physics of solver.backend on flag.coarse, the paper's infill
 // on flag.fine every output frame, starting from the previous dense frame.
 class HybridSimulation final : public Simulation {
  public:
   explicit HybridSimulation(const Scene& scene)
-      : coarse_scene_(coarse_scene_of(scene)),
+      : coarse_scene_(on_coarse_lattice(scene)),
         physics_(integrator_for(coarse_scene_)),
         dense_(scene, (*scene.flag.coarse)[0], (*scene.flag.coarse)[1]),
         paper_infill_(infill_solver_of(scene) == InfillSolverKind::kPaper) {

@@ -190,4 +190,21 @@ InfillSolverKind infill_solver_of(const Scene& scene);
 int paper_relax_sweeps_of(const Scene& scene);
 const char* to_string(PinSet pin);
 
+// Variants of a scene, each derived by one named function here rather than
+// by editing a copy where it is needed.
+
+/// The same scene run in `mode` (compare's tracking run, the run records'
+/// full-lattice replay). Its checks were made for the scene's own mode.
+Scene in_mode(const Scene& scene, Mode mode);
+/// The same scene at `substeps` steps per frame at least (compare doubling a
+/// reference's substeps until it is as accurate as the hybrid).
+Scene with_substeps(const Scene& scene, int substeps);
+/// The same scene with solver.backend the integrator its mode runs
+/// (backend_of): what an integrator factory takes in every mode.
+Scene with_resolved_backend(const Scene& scene);
+/// A hybrid scene's cloth on its coarse lattice (flag.coarse) as a
+/// full-lattice scene: the same continuum parameters, so the same cloth
+/// (masses and springs follow the spacing). flag.coarse must be set.
+Scene on_coarse_lattice(const Scene& scene);
+
 }  // namespace flagsim
