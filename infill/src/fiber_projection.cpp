@@ -22,12 +22,7 @@ double outside(double relative, const LinkBand& band) {
 }  // namespace
 
 FiberProjection::FiberProjection(const Lattice& fine)
-    : lattice_(fine),
-      inverse_mass_(fine.node_count(), 1.0),
-      row_bands_(std::size_t(fine.rows) * std::size_t(fine.cols - 1)),
-      col_bands_(std::size_t(fine.rows - 1) * std::size_t(fine.cols)),
-      row_fixed_(row_bands_.size(), 0),
-      col_fixed_(col_bands_.size(), 0) {
+    : lattice_(fine), inverse_mass_(fine.node_count(), 1.0), bands_(fine), fixed_(fine, 0) {
   const std::size_t lanes = std::size_t(std::max(fine.rows, fine.cols)) * kLanes;
   for (std::vector<double>* buffer : {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_,
                                       &diag_, &off_, &rhs_, &dx_, &dy_, &dz_})
@@ -38,21 +33,11 @@ FiberProjection::FiberProjection(const Lattice& fine)
 void FiberProjection::hold(std::span<const std::uint8_t> held) {
   assert(held.size() == inverse_mass_.size());
   for (std::size_t i = 0; i < held.size(); ++i) inverse_mass_[i] = held[i] ? 0.0 : 1.0;
-  const int J = lattice_.rows, K = lattice_.cols;
-  for (int j = 0; j < J; ++j)
-    for (int k = 0; k < K; ++k) {
-      const std::size_t a = lattice_.index(j, k);
-      if (k + 1 < K)
-        row_fixed_[std::size_t(j) * std::size_t(K - 1) + std::size_t(k)] = held[a] && held[a + 1];
-      if (j + 1 < J)
-        col_fixed_[std::size_t(j) * std::size_t(K) + std::size_t(k)] =
-            held[a] && held[a + std::size_t(K)];
-    }
+  for_each_link(lattice_, [&](const Link& link) { fixed_[link] = held[link.a] && held[link.b]; });
 }
 
 void FiberProjection::set_uniform_band(double band) {
-  std::fill(row_bands_.begin(), row_bands_.end(), LinkBand{1.0 - band, 1.0 + band});
-  std::fill(col_bands_.begin(), col_bands_.end(), LinkBand{1.0 - band, 1.0 + band});
+  bands_.fill(LinkBand{1.0 - band, 1.0 + band});
 }
 
 // The lanes as one vector of doubles (GCC's vector extension: two SSE2
@@ -209,8 +194,7 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   const double rest_m = rows ? lattice_.spacing_x_m : lattice_.spacing_y_m;
   const auto first_of = [&](int f) { return rows ? lattice_.index(f, 0) : lattice_.index(0, f); };
   const auto band_of = [&](int f, int i) -> const LinkBand& {
-    return rows ? row_bands_[std::size_t(f) * std::size_t(K - 1) + std::size_t(i)]
-                : col_bands_[std::size_t(i) * std::size_t(K) + std::size_t(f)];
+    return rows ? bands_.row(f, i) : bands_.col(i, f);
   };
   // Which fibers have a link outside its band by more than the tolerance:
   // squared lengths against squared bounds (set up by project()), no square
@@ -282,7 +266,7 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
   // The bounds of every link with the tolerance, squared, in m^2; a link with
   // both ends held cannot be moved: never out of bounds (hold() marks them).
   const auto squared_bounds = [tolerance](std::span<const LinkBand> bands,
-                                          const std::vector<std::uint8_t>& fixed, double rest_m,
+                                          std::span<const std::uint8_t> fixed, double rest_m,
                                           std::vector<double>& low2, std::vector<double>& high2) {
     low2.resize(bands.size());
     high2.resize(bands.size());
@@ -293,8 +277,8 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
       high2[i] = fixed[i] ? std::numeric_limits<double>::infinity() : high * high;
     }
   };
-  squared_bounds(row_bands_, row_fixed_, lattice_.spacing_x_m, row_low2_, row_high2_);
-  squared_bounds(col_bands_, col_fixed_, lattice_.spacing_y_m, col_low2_, col_high2_);
+  squared_bounds(bands_.rows(), fixed_.rows(), lattice_.spacing_x_m, row_low2_, row_high2_);
+  squared_bounds(bands_.cols(), fixed_.cols(), lattice_.spacing_y_m, col_low2_, col_high2_);
   for (int round = 1; round <= max_rounds && !stop_requested(); ++round) {
     report.rounds = round;
     // The first round solves every fiber without checking first: nearly all
@@ -315,22 +299,14 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
 }
 
 double FiberProjection::worst_excess(std::span<const Vec3> positions_m) const {
-  const int J = lattice_.rows, K = lattice_.cols;
   // A link with both ends held cannot be moved: not counted (as in project()).
-  const auto held = [&](std::size_t node) { return inverse_mass_[node] == 0.0; };
   double worst = 0.0;
-  for (int j = 0; j < J; ++j)
-    for (int k = 0; k < K; ++k) {
-      const std::size_t a = lattice_.index(j, k);
-      const Vec3& p = positions_m[a];
-      if (k + 1 < K && !(held(a) && held(a + 1)))
-        worst = std::max(worst, outside((positions_m[a + 1] - p).norm() / lattice_.spacing_x_m,
-                                        row_bands_[std::size_t(j) * (K - 1) + std::size_t(k)]));
-      if (j + 1 < J && !(held(a) && held(a + std::size_t(K))))
-        worst = std::max(
-            worst, outside((positions_m[a + std::size_t(K)] - p).norm() / lattice_.spacing_y_m,
-                           col_bands_[std::size_t(j) * K + std::size_t(k)]));
-    }
+  for_each_link(lattice_, [&](const Link& link) {
+    if (!fixed_[link])
+      worst = std::max(
+          worst,
+          outside((positions_m[link.b] - positions_m[link.a]).norm() / link.rest_m, bands_[link]));
+  });
   return worst;
 }
 

@@ -245,7 +245,7 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   const auto upper = [](double stretch) {
     return 1.0 + std::min(kStretchCap, std::max(kBand, stretch));
   };
-  const std::span<LinkBand> rows = projection_.row_bands(), cols = projection_.col_bands();
+  LinkField<LinkBand>& bands = projection_.bands();
   const int J = lattice_.rows, K = lattice_.cols;
   // Row links: coarse row links lie on coarse rows jc, their midpoints at kc + 1/2.
   const auto at = [](const Taps& w, const double* line, std::size_t stride) {
@@ -263,7 +263,7 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   }
   for (int j = 0; j < J; ++j) {
     const Taps w = taps_at(double(j) / rs, jc_count);
-    LinkBand* out = &rows[std::size_t(j) * std::size_t(K - 1)];
+    LinkBand* out = &bands.row(j, 0);
     for (int k = 0; k + 1 < K; ++k)
       out[k] = {1.0 - kBand, upper(at(w, &along_[std::size_t(k)], std::size_t(K - 1)))};
   }
@@ -276,7 +276,7 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   }
   for (int j = 0; j + 1 < J; ++j) {
     const double* line = &along_[std::size_t(j) * std::size_t(kc_count)];
-    LinkBand* out = &cols[std::size_t(j) * std::size_t(K)];
+    LinkBand* out = &bands.col(j, 0);
     for (int k = 0; k < K; ++k)
       out[k] = {1.0 - kBand, upper(at(col_node_taps_[std::size_t(k)], line, 1))};
   }

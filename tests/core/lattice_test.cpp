@@ -59,5 +59,32 @@ TEST(Lattice, EveryLinkOnceInRowMajorOrderWithItsRestLength) {
   EXPECT_EQ(links.back().b, lattice.index(2, 3));
 }
 
+TEST(Lattice, ALinkFieldHoldsOneValueForEveryLinkWhereItsLinkSays) {
+  const Lattice lattice = Lattice::rectangle(3, 4, 1.0, 2.0, Vec3::Zero());
+  LinkField<int> field(lattice, -1);
+  EXPECT_EQ(field.rows().size(), 9u);  // 3 x 3 row links
+  EXPECT_EQ(field.cols().size(), 8u);  // 2 x 4 column links
+  int n = 0;
+  for_each_link(lattice, [&](const Link& link) { field[link] = n++; });
+  for (int value : field.rows()) EXPECT_GE(value, 0);  // every slot written once
+  for (int value : field.cols()) EXPECT_GE(value, 0);
+  // (j, k)'s row link and column link, in the visiting order.
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 4; ++k) {
+      std::vector<int> mine;
+      for_each_link(lattice, [&](const Link& link) {
+        if (link.a == lattice.index(j, k)) mine.push_back(field[link]);
+      });
+      std::size_t i = 0;
+      if (k + 1 < 4) {
+        EXPECT_EQ(field.row(j, k), mine.at(i++)) << j << "," << k;
+      }
+      if (j + 1 < 3) {
+        EXPECT_EQ(field.col(j, k), mine.at(i++)) << j << "," << k;
+      }
+      EXPECT_EQ(i, mine.size());
+    }
+}
+
 }  // namespace
 }  // namespace flagsim

@@ -87,7 +87,7 @@ TEST(FiberProjection, ABandWiderThanOneLetsTheLinkStretch) {
   const Lattice lattice = Lattice::rectangle(5, 5, 1.0, 1.0, Vec3::Zero());
   FiberProjection projection(lattice);
   projection.set_uniform_band(0.0);
-  for (LinkBand& band : projection.row_bands()) band = {1.0, 1.03};
+  for (LinkBand& band : projection.bands().rows()) band = {1.0, 1.03};
   std::vector<Vec3> x = lattice.rest_positions();
   for (Vec3& p : x) p.x() *= 1.05;  // rows 5% long, columns at rest
   ASSERT_TRUE(projection.project(x, 1e-6, 20, 3).converged);
@@ -108,7 +108,7 @@ TEST(FiberProjection, TheResidualCountsOnlyLinksItCanMove) {
   for (int j = 0; j < 5; ++j) held[lattice.index(j, 0)] = 1;
   projection.hold(held);
   projection.set_uniform_band(0.005);
-  for (int j = 0; j + 1 < 5; ++j) projection.col_bands()[std::size_t(j) * 9] = {1.25, 1.3};
+  for (int j = 0; j + 1 < 5; ++j) projection.bands().col(j, 0) = {1.25, 1.3};
   std::vector<Vec3> x = lattice.rest_positions();
   x[lattice.index(2, 8)].x() += 0.2 * lattice.spacing_x_m;  // one free link, 20% long
   const ProjectionReport capped = projection.project(x, 1e-6, 0, 1);

@@ -6,8 +6,10 @@
 // coordinates"): row 0 is the top edge, column 0 the pole edge, the flag rests
 // in the z = 0 plane. Per-node data is stored row-major in one flat array,
 // index(j, k) = j * cols + k.
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "flagsim/core/vec3.hpp"
@@ -39,10 +41,49 @@ struct Lattice {
 };
 
 /// One link between neighbour nodes: flat indices a, b (b the right or lower
-/// neighbour) and its rest length, m.
+/// neighbour), its rest length, m, and where a LinkField keeps its value.
 struct Link {
   std::size_t a = 0, b = 0;
   double rest_m = 0.0;
+  bool along_row = true;  ///< a row link (j, k)-(j, k + 1); else a column link (j, k)-(j + 1, k)
+  std::size_t slot = 0;   ///< its index in its family's array (LinkField)
+};
+
+/// A value per link, in the lattice's two link families, each row-major: row
+/// links [J x (K-1)], (j, k)-(j, k + 1) at row(j, k); column links [(J-1) x K],
+/// (j, k)-(j + 1, k) at col(j, k). Indexed by a Link from for_each_link too.
+template <class T>
+class LinkField {
+ public:
+  LinkField() = default;
+  explicit LinkField(const Lattice& lattice, const T& value = T{})
+      : cols_(std::size_t(lattice.cols)),
+        rows_(std::size_t(lattice.rows) * std::size_t(lattice.cols - 1), value),
+        columns_(std::size_t(lattice.rows - 1) * std::size_t(lattice.cols), value) {}
+
+  T& row(int j, int k) { return rows_[std::size_t(j) * (cols_ - 1) + std::size_t(k)]; }
+  const T& row(int j, int k) const { return rows_[std::size_t(j) * (cols_ - 1) + std::size_t(k)]; }
+  T& col(int j, int k) { return columns_[std::size_t(j) * cols_ + std::size_t(k)]; }
+  const T& col(int j, int k) const { return columns_[std::size_t(j) * cols_ + std::size_t(k)]; }
+  T& operator[](const Link& link) {
+    return link.along_row ? rows_[link.slot] : columns_[link.slot];
+  }
+  const T& operator[](const Link& link) const {
+    return link.along_row ? rows_[link.slot] : columns_[link.slot];
+  }
+  /// Each family's whole array, row-major.
+  std::span<T> rows() { return rows_; }
+  std::span<const T> rows() const { return rows_; }
+  std::span<T> cols() { return columns_; }
+  std::span<const T> cols() const { return columns_; }
+  void fill(const T& value) {
+    std::fill(rows_.begin(), rows_.end(), value);
+    std::fill(columns_.begin(), columns_.end(), value);
+  }
+
+ private:
+  std::size_t cols_ = 0;  ///< K
+  std::vector<T> rows_, columns_;
 };
 
 /// Calls visit(link) for every link of the lattice, node by node in row-major
@@ -52,11 +93,13 @@ struct Link {
 template <class Visit>
 void for_each_link(const Lattice& lattice, Visit&& visit) {
   const std::size_t stride = std::size_t(lattice.cols);
+  std::size_t row_slot = 0;
   for (int j = 0; j < lattice.rows; ++j)
     for (int k = 0; k < lattice.cols; ++k) {
       const std::size_t a = lattice.index(j, k);
-      if (k + 1 < lattice.cols) visit(Link{a, a + 1, lattice.spacing_x_m});
-      if (j + 1 < lattice.rows) visit(Link{a, a + stride, lattice.spacing_y_m});
+      if (k + 1 < lattice.cols) visit(Link{a, a + 1, lattice.spacing_x_m, true, row_slot++});
+      // Column link (j, k) sits at j K + k: the index of its upper node.
+      if (j + 1 < lattice.rows) visit(Link{a, a + stride, lattice.spacing_y_m, false, a});
     }
 }
 

@@ -76,10 +76,8 @@ class FiberProjection {
   /// @param held  [J*K], 1 for nodes that must not move (replaces any earlier)
   void hold(std::span<const std::uint8_t> held);
 
-  /// Row links [J x (K-1)] and column links [(J-1) x K], row-major: the band of
-  /// each link, relative to its rest spacing.
-  std::span<LinkBand> row_bands() { return row_bands_; }
-  std::span<LinkBand> col_bands() { return col_bands_; }
+  /// The band of each link, relative to its rest spacing.
+  LinkField<LinkBand>& bands() { return bands_; }
   void set_uniform_band(double band);
 
   /// Rounds of rows-then-columns until every link is within its band to
@@ -103,8 +101,8 @@ class FiberProjection {
 
   Lattice lattice_;
   std::vector<double> inverse_mass_;  ///< [J*K]
-  std::vector<LinkBand> row_bands_, col_bands_;
-  std::vector<std::uint8_t> row_fixed_, col_fixed_;  ///< links with both ends held
+  LinkField<LinkBand> bands_;
+  LinkField<std::uint8_t> fixed_;         ///< links with both ends held
   std::vector<int> active_;               ///< fibers of the family being worked on that need a step
   std::vector<std::uint8_t> fiber_flag_;  ///< each fiber: a link out of bounds, in the check
   std::vector<double> row_low2_, row_high2_, col_low2_, col_high2_;  ///< bounds with tolerance, m^2
