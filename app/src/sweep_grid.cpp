@@ -82,22 +82,15 @@ std::vector<SweepPoint> sweep_grid(const SweepOptions& o) {
           for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
             SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
                          {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
-            if (!backend.empty()) {
-              p.sets.push_back(fmt::format("solver.backend=\"{}\"", backend));
-              p.label += fmt::format(" {}", backend);
-            }
-            if (s > 0) {
-              p.sets.push_back(fmt::format("solver.substeps={}", s));
-              p.label += fmt::format(" substeps {}", s);
-            }
-            if (!solver.empty()) {
-              p.sets.push_back(fmt::format("infill.solver=\"{}\"", solver));
-              p.label += fmt::format(" {}", solver);
-            }
-            if (r > 0) {
-              p.sets.push_back(fmt::format("infill.relax_iterations={}", r));
-              p.label += fmt::format(" relax {}", r);
-            }
+            const auto add = [&p](std::string set, const std::string& label) {
+              p.sets.push_back(std::move(set));
+              p.label += " " + label;
+            };
+            if (!backend.empty()) add(fmt::format("solver.backend=\"{}\"", backend), backend);
+            if (s > 0) add(fmt::format("solver.substeps={}", s), fmt::format("substeps {}", s));
+            if (!solver.empty()) add(fmt::format("infill.solver=\"{}\"", solver), solver);
+            if (r > 0)
+              add(fmt::format("infill.relax_iterations={}", r), fmt::format("relax {}", r));
             points.push_back(p);
           }
   return points;
