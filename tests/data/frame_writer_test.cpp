@@ -155,11 +155,5 @@ TEST(FrameWriter, OutputPathThatIsADirectoryIsAUserError) {
   EXPECT_THROW(FrameWriter(dir.path(), lattice, info(), 1), UserError);
 }
 
-TEST(OutputReader, ForeignAndMissingFilesAreUserErrors) {
-  test::TempDir dir;
-  EXPECT_THROW(OutputReader(dir.file("missing.h5")), UserError);
-  EXPECT_THROW(OutputReader(dir.write("text.h5", "not hdf5")), UserError);
-}
-
 }  // namespace
 }  // namespace flagsim::data
