@@ -43,13 +43,13 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
         wrinkles);
     coarser_positions_.resize(half.node_count());
     coarser_offsets_.resize(std::size_t(half.rows) * std::size_t(fine.cols));
-    // The coarsest level under finer ones smooths its correction (they inherit it).
-    if (!coarser_->coarser_) coarser_->smooths_ = true;
-  } else {
-    // A lattice that is its own coarsest level smooths only with cells of
-    // 2 kLevelStride links or more (odd strides, no level below).
-    smooths_ = std::min(grid.row_stride, grid.col_stride) >= 2 * kLevelStride;
   }
+  // Whether the coarsest level smooths is decided by the cells of the lattice
+  // the user sees: each level sets it for its own cells, and the finest level,
+  // constructed last, has the final word.
+  SmoothInfill* coarsest = this;
+  while (coarsest->coarser_) coarsest = coarsest->coarser_.get();
+  coarsest->smooths_ = std::min(grid.row_stride, grid.col_stride) >= kSmoothedCellLinks;
 }
 
 // Weights of the coarser samples that give fine sample `i` (of `n`): the

@@ -19,14 +19,14 @@
 //  3.3 length: the paper moves a fiber toward its rest length; here 3.4 does
 //      the moving exactly, and 3.3 sets what "its length" is: each link's band,
 //      [1 - kBand, 1 + min(kStretchCap, max(kBand, stretch of the coarse
-//      links around it, interpolated bilinearly))] x S.
+//      links around it, interpolated by Catmull-Rom cubics))] x S.
 //      A dense link may be as long as the coarse physics made the coarse link
 //      it lies along; no slack is invented.
 //  3.4 relaxation: whole-fiber Gauss-Newton projection (fiber_projection.hpp)
-//      until every link is within its band; only pinned nodes are held. On
-//      the coarsest level its correction is smoothed and projected again
-//      (kSmoothingCycles, below), so that it carries no crease on the coarse
-//      lines up to the finer levels.
+//      until every link is within its band; only pinned nodes are held. Under
+//      cells of 16 links or more, on the coarsest level its correction is
+//      smoothed and projected again (kSmoothingCycles, below), so that it carries no crease on the
+//      coarse lines up to the finer levels.
 //  3.5 (with [wrinkles]) re-move by the bending feature, on whole fibers:
 //      each row and column's slack on the mean surface, dL = L - c with c the
 //      fiber's length along the surface (the paper's chord |P_j1 - P_jK| of
@@ -96,10 +96,16 @@ inline constexpr int kLevelStride = 4;
 /// cycles, 0 (1.19) / 0 (1.14) / 0 (1.20) / 0 (1.29). 1-8 cycles and 2-8 passes
 /// gave 1.13-1.25 on the default scene; the wide flag stays near 1.3 with any
 /// (1.29-1.42: its surface alone, before any projection, gives 1.33 there).
-/// A lattice that is its own coarsest level with cells under 2 kLevelStride
-/// links (33 x 49 from 9 x 13: cells of 4) is not smoothed: its worst frame is
-/// 1.25 without (1.18 with), and the cycles would cost 4x its infill (0.14 ->
-/// 0.57 ms a frame).
+/// Only where the output's cells have kSmoothedCellLinks links or more: with
+/// shorter cells the crease the finer levels inherit stays under the 1.3 of
+/// issue 12 unsmoothed, and the cycles would cost 4 projections of the
+/// coarsest level, a quarter of the nodes under cells of 8 (65 x 97: 0.51 ->
+/// 0.82 ms a frame). Measured (91 frames, 9 x 13 coarse unless said; worst
+/// frame without / with): cells of 4 (33 x 49) 1.25 / 1.18, 8 (65 x 97) 1.14 /
+/// 1.14, 8 (97 x 49 from 13 x 7) 1.22 / 1.20, 9 (73 x 109, no coarser level)
+/// 1.14 / 1.16, 12 (97 x 145) 1.20 / 1.15, 14 (113 x 169) 1.20 / 1.14; but 16
+/// (the default, 129 x 193) 1.34 / 1.19 and 18 (145 x 217) 1.27 / 1.14.
+inline constexpr int kSmoothedCellLinks = 16;
 inline constexpr int kSmoothingPasses = 4;
 inline constexpr int kSmoothingCycles = 3;
 /// Gauss-Newton steps per fiber per round (a fiber that converges stops early).
@@ -155,7 +161,7 @@ class SmoothInfill final : public InfillMethod {
   } stages_;
   std::optional<WrinkleParams> wrinkles_;
   std::vector<Vec3> surface_;  ///< this frame's mean surface (3.1), read by 3.5 and the level above
-  bool smooths_ = false;       ///< this level runs the kSmoothingCycles (set by the constructors)
+  bool smooths_ = false;       ///< this level runs the kSmoothingCycles (set by the finest level)
   std::vector<Vec3> correction_, smoothed_;  ///< smooth_correction's work buffers
   std::vector<Vec3> normals_;                ///< 3.5: the surface's normals
   std::vector<double> last_offset_;          ///< 3.5: last frame's offset along its normal, m
