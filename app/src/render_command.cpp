@@ -1,6 +1,7 @@
 #include "render_command.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -126,14 +127,14 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   if (scene_render) {
     plan.width = scene_render->size_px[0];
     plan.height = scene_render->size_px[1];
-    plan.style = *render::parse_style(scene_render->style);
+    plan.style = scene_render->style;
   }
   if (request.size) std::tie(plan.width, plan.height) = parse_size(*request.size);
   if (request.style) {
     const auto style = render::parse_style(*request.style);
     if (!style)
-      throw UserError(fmt::format(
-          "--style {}: expected one of \"wireframe\", \"shaded\", \"textured\"", *request.style));
+      throw UserError(fmt::format("--style {}: expected one of \"{}\"", *request.style,
+                                  fmt::join(names_in(kRenderStyleNames), "\", \"")));
     plan.style = *style;
   }
   if (request.camera) {

@@ -52,7 +52,7 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
                    const RunRecord* tracking, const MetricWindow& window) {
   ReportRow row;
   row.mode = to_string(scene.mode);
-  row.backend = backend_of(scene);
+  row.backend = backend_name_of(scene);
   row.fine = lattice_text(run.lattice.rows, run.lattice.cols);
   row.coarse = run.coarse_rows.empty()
                    ? std::string()

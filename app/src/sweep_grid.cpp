@@ -1,6 +1,7 @@
 #include "sweep_grid.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <regex>
@@ -43,16 +44,24 @@ int parse_count(const std::string& flag, const std::string& item) {
   return std::stoi(m[1]);
 }
 
+// One of a table's names, kept as the name (the sweep writes it into --set).
+template <typename E, std::size_t N>
+std::string parse_name(const std::string& flag, const std::string& item, std::string_view what,
+                       const NameTable<E, N>& table) {
+  if (value_in(table, item)) return item;
+  std::vector<std::string_view> names = names_in(table);
+  const std::string_view last = names.back();
+  names.pop_back();
+  throw UserError(fmt::format("{} {}: expected {} {} and/or {}", flag, item, what,
+                              fmt::join(names, ", "), last));
+}
+
 std::string parse_infill_solver(const std::string& flag, const std::string& item) {
-  if (item != "smooth" && item != "paper")
-    throw UserError(fmt::format("{} {}: expected infill solvers smooth and/or paper", flag, item));
-  return item;
+  return parse_name(flag, item, "infill solvers", kInfillSolverNames);
 }
 
 std::string parse_backend(const std::string& flag, const std::string& item) {
-  if (std::find(kBackends.begin(), kBackends.end(), item) != kBackends.end()) return item;
-  throw UserError(fmt::format(
-      "{} {}: expected backends spring-damper, bullet, implicit and/or xpbd", flag, item));
+  return parse_name(flag, item, "backends", kBackendNames);
 }
 
 }  // namespace

@@ -16,9 +16,16 @@ double ClothIntegrator::kinetic_energy() const {
 }
 
 std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene) {
-  if (scene.solver.backend == "bullet") return std::make_unique<BulletCloth>(scene);
-  if (scene.solver.backend == "implicit") return std::make_unique<ImplicitEuler>(scene);
-  if (scene.solver.backend == "xpbd") return std::make_unique<Xpbd>(scene);
+  switch (scene.solver.backend) {
+    case Backend::kBullet:
+      return std::make_unique<BulletCloth>(scene);
+    case Backend::kImplicit:
+      return std::make_unique<ImplicitEuler>(scene);
+    case Backend::kXpbd:
+      return std::make_unique<Xpbd>(scene);
+    case Backend::kSpringDamper:
+      break;
+  }
   return std::make_unique<SpringDamperIntegrator>(scene);
 }
 

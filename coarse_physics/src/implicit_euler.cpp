@@ -47,7 +47,7 @@ ImplicitEuler::ImplicitEuler(const Scene& scene)
   for (auto* v : {&x0_, &v0_, &forces_, &residual_, &delta_, &r_, &z_, &p_, &ap_, &scratch_})
     v->assign(n, Vec3::Zero());
   block_inverse_.assign(n, Mat3::Zero());
-  direct_ = scene.solver.linear == "cholesky";
+  direct_ = scene.solver.linear == LinearSolver::kCholesky;
   if (direct_) direct_state_ = std::make_unique<Direct>();
   stiffness_diagonal_.assign(n, Mat3::Zero());
   damping_diagonal_.assign(n, Mat3::Zero());

@@ -16,57 +16,45 @@ Lattice Scene::fine_lattice() const {
 }
 
 const char* to_string(Mode mode) {
-  switch (mode) {
-    case Mode::kHybrid:
-      return "hybrid";
-    case Mode::kMassSpring:
-      return "mass-spring";
-    case Mode::kBullet:
-      return "bullet";
-    case Mode::kImplicit:
-      return "implicit";
-    case Mode::kXpbd:
-      return "xpbd";
-    case Mode::kInfill:
-      return "infill";
-  }
-  return "?";
+  return name_in(kModeNames, mode).data();
 }
-
 const char* to_string(PinSet pin) {
-  switch (pin) {
-    case PinSet::kLeft:
-      return "left";
-    case PinSet::kRight:
-      return "right";
-    case PinSet::kTop:
-      return "top";
-    case PinSet::kCorners:
-      return "corners";
-    case PinSet::kNone:
-      return "none";
-  }
-  return "?";
+  return name_in(kPinNames, pin).data();
 }
-
 const char* to_string(InfillSolverKind kind) {
-  return kind == InfillSolverKind::kSmooth ? "smooth" : "paper";
+  return name_in(kInfillSolverNames, kind).data();
+}
+const char* to_string(Backend backend) {
+  return name_in(kBackendNames, backend).data();
+}
+const char* to_string(LinearSolver linear) {
+  return name_in(kLinearSolverNames, linear).data();
+}
+const char* to_string(RenderStyle style) {
+  return name_in(kRenderStyleNames, style).data();
 }
 
-std::string backend_of(const Scene& scene) {
+std::optional<Backend> backend_of(const Scene& scene) {
   switch (scene.mode) {
     case Mode::kHybrid:
       return scene.solver.backend;
     case Mode::kMassSpring:
-      return "spring-damper";
-    case Mode::kInfill:
-      return "";
+      return Backend::kSpringDamper;
     case Mode::kBullet:
+      return Backend::kBullet;
     case Mode::kImplicit:
+      return Backend::kImplicit;
     case Mode::kXpbd:
-      return to_string(scene.mode);
+      return Backend::kXpbd;
+    case Mode::kInfill:
+      return std::nullopt;
   }
-  return "";
+  return std::nullopt;
+}
+
+std::string backend_name_of(const Scene& scene) {
+  const std::optional<Backend> backend = backend_of(scene);
+  return backend ? to_string(*backend) : "";
 }
 
 InfillSolverKind infill_solver_of(const Scene& scene) {
@@ -98,7 +86,7 @@ Scene with_substeps(const Scene& scene, int substeps) {
 
 Scene with_resolved_backend(const Scene& scene) {
   Scene variant = scene;
-  variant.solver.backend = backend_of(scene);
+  if (const std::optional<Backend> backend = backend_of(scene)) variant.solver.backend = *backend;
   return variant;
 }
 

@@ -113,12 +113,12 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
   }
   // The implicit backend alone solves a linear system; elsewhere solver.linear
   // would be silently ignored.
-  if (const std::string backend = backend_of(scene);
-      scene.mode != Mode::kInfill && root.table().at_path("solver.linear") && backend != "implicit")
+  if (const std::optional<Backend> backend = backend_of(scene);
+      backend && root.table().at_path("solver.linear") && *backend != Backend::kImplicit)
     unused_setting("solver.linear", "solver.linear",
                    fmt::format("the {} backend has no linear solve; solver.linear applies to "
                                "solver.backend = \"implicit\" or scene.mode = \"implicit\"",
-                               backend));
+                               to_string(*backend)));
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
                                       to_string(scene.mode), fmt::join(unused, ", ")));

@@ -171,31 +171,17 @@ std::string apply_override(toml::table& root, const Override& override) {
   return key;
 }
 
-Mode parse_mode(const std::string& text) {
-  for (Mode mode : {Mode::kHybrid, Mode::kMassSpring, Mode::kBullet, Mode::kImplicit, Mode::kXpbd,
-                    Mode::kInfill})
-    if (text == to_string(mode)) return mode;
-  return Mode::kMassSpring;
-}
-
-PinSet parse_pin(const std::string& text) {
-  if (text == "right") return PinSet::kRight;
-  if (text == "top") return PinSet::kTop;
-  if (text == "corners") return PinSet::kCorners;
-  if (text == "none") return PinSet::kNone;
-  return PinSet::kLeft;
-}
-
 void read_scene_table(TableReader& in, Scene& scene, std::string_view source_path) {
   std::string stem = std::filesystem::path(std::string(source_path)).stem().string();
   scene.name = in.string("name", stem.empty() ? "scene" : stem);
-  scene.mode = parse_mode(in.choice(
-      "mode", "mass-spring", {"hybrid", "mass-spring", "bullet", "implicit", "xpbd", "infill"}));
-  scene.fps = in.real("fps", 30.0, Bound{0.0, limits::kFps, true}, "frames per second");
-  scene.duration_s = in.real("duration", 10.0, Bound{0.0, 1.0e6, true}, "s");
+  // Every fallback below is the field's own default (scene.hpp): one home per default.
+  scene.mode = in.choice_of("mode", scene.mode, kModeNames);
+  scene.fps = in.real("fps", scene.fps, Bound{0.0, limits::kFps, true}, "frames per second");
+  scene.duration_s = in.real("duration", scene.duration_s, Bound{0.0, 1.0e6, true}, "s");
   if (auto frames = in.optional_integer("frames", 1, kMaxFrames))
     scene.duration_s = double(*frames - 1) / scene.fps;  // extension key, set by --frames
-  scene.seed = std::uint64_t(in.integer("seed", 0, 0, std::numeric_limits<long long>::max()));
+  scene.seed = std::uint64_t(
+      in.integer("seed", (long long)scene.seed, 0, std::numeric_limits<long long>::max()));
   if (scene.duration_s * scene.fps + 1.0 > double(kMaxFrames))
     in.fail("duration", fmt::format("duration * fps gives {:.0f} frames; at most {} are allowed",
                                     scene.duration_s * scene.fps, kMaxFrames));
@@ -216,13 +202,14 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
       in.real("areal_density", flag.areal_density_kg_m2, Bound{1.0e-4, 100.0, false}, "kg/m^2");
   flag.stretch_modulus_n_m =
       in.real("stretch_modulus", flag.stretch_modulus_n_m, Bound{0.0, 1.0e8, true}, "N/m");
-  // Default shear stiffness: a tenth of the stretch stiffness, loosely woven cloth.
+  // Default shear stiffness: a tenth of the stretch stiffness, loosely woven
+  // cloth (the one default derived from another key; FlagSpec's is 2e4 / 10).
   flag.shear_modulus_n_m =
       in.real("shear_modulus", flag.stretch_modulus_n_m / 10.0, Bound{0.0, 1.0e8, false}, "N/m");
   flag.damping_per_s = in.real("damping", flag.damping_per_s, Bound{0.0, 1.0e6, false}, "1/s");
-  flag.pin = parse_pin(in.choice("pin", "left", {"left", "right", "top", "corners", "none"}));
+  flag.pin = in.choice_of("pin", flag.pin, kPinNames);
   flag.initial_perturbation_m =
-      in.real("initial_perturbation", 0.0, Bound::between(0.0, 10.0), "m");
+      in.real("initial_perturbation", flag.initial_perturbation_m, Bound::between(0.0, 10.0), "m");
 }
 
 void read_effect_tables(TableReader& root, Scene& scene) {
@@ -230,11 +217,11 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     TableReader in(*t, "pole", root.where_of("pole"));
     in.choice("motion", "sine", {"sine"});
     PoleMotion pole;
-    const Vec3 axis = in.vec3("axis", Vec3::UnitY(), "(direction)");
+    const Vec3 axis = in.vec3("axis", pole.axis_unit, "(direction)");
     if (axis.norm() == 0.0) in.fail("axis", "expected a non-zero direction [x, y, z]");
     pole.axis_unit = axis.normalized();
-    pole.amplitude_m = in.real("amplitude", 0.1, Bound::between(0.0, 100.0), "m");
-    pole.frequency_hz = in.real("frequency", 1.0, Bound::between(0.0, 100.0), "Hz");
+    pole.amplitude_m = in.real("amplitude", pole.amplitude_m, Bound::between(0.0, 100.0), "m");
+    pole.frequency_hz = in.real("frequency", pole.frequency_hz, Bound::between(0.0, 100.0), "Hz");
     in.finish(kAllKeys);
     scene.pole = pole;
   }
@@ -263,14 +250,21 @@ void read_effect_tables(TableReader& root, Scene& scene) {
         in.real("air_density", wind.air_density_kg_m3, Bound{0.0, 100.0, true}, "kg/m^3");
     if (const toml::table* g = in.subtable("gusts")) {
       TableReader gin(*g, "wind.gusts", in.where_of("gusts"));
-      wind.gusts = Gusts{gin.real("amplitude", 0.2, Bound::between(0.0, 10.0), "(fraction)"),
-                         gin.real("period", 2.0, Bound{1.0e-3, 1.0e6, false}, "s")};
+      Gusts gusts;
+      gusts.amplitude =
+          gin.real("amplitude", gusts.amplitude, Bound::between(0.0, 10.0), "(fraction)");
+      gusts.period_s = gin.real("period", gusts.period_s, Bound{1.0e-3, 1.0e6, false}, "s");
+      wind.gusts = gusts;
       gin.finish(kAllKeys);
     }
     if (const toml::table* tt = in.subtable("turbulence")) {
       TableReader tin(*tt, "wind.turbulence", in.where_of("turbulence"));
-      wind.turbulence = Turbulence{tin.real("intensity", 0.1, Bound::between(0.0, 10.0), ""),
-                                   tin.real("length_scale", 1.0, Bound{1.0e-3, 1.0e4, false}, "m")};
+      Turbulence turbulence;
+      turbulence.intensity =
+          tin.real("intensity", turbulence.intensity, Bound::between(0.0, 10.0), "");
+      turbulence.length_scale_m =
+          tin.real("length_scale", turbulence.length_scale_m, Bound{1.0e-3, 1.0e4, false}, "m");
+      wind.turbulence = turbulence;
       tin.finish(kAllKeys);
     }
     in.finish(kAllKeys);
@@ -278,7 +272,9 @@ void read_effect_tables(TableReader& root, Scene& scene) {
   }
   if (const toml::table* t = root.subtable("bending")) {
     TableReader in(*t, "bending", root.where_of("bending"));
-    scene.bending = Bending{in.real("stiffness", 1.0e-4, Bound::between(0.0, 1.0), "N m")};
+    Bending bending;
+    bending.rigidity_j = in.real("stiffness", bending.rigidity_j, Bound::between(0.0, 1.0), "N m");
+    scene.bending = bending;
     in.finish(kAllKeys);
   }
 }
@@ -313,8 +309,9 @@ void read_infill_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("wrinkles")) {
     TableReader in(*t, "wrinkles", root.where_of("wrinkles"));
     Wrinkles w;
-    w.fiber_radius_m = in.real("fiber_radius", 1.0e-3, Bound{0.0, 0.01, true}, "m");
-    w.fiber_modulus_pa = in.real("fiber_modulus", 1.0e9, Bound{0.0, 1.0e12, true}, "Pa");
+    w.fiber_radius_m = in.real("fiber_radius", w.fiber_radius_m, Bound{0.0, 0.01, true}, "m");
+    w.fiber_modulus_pa =
+        in.real("fiber_modulus", w.fiber_modulus_pa, Bound{0.0, 1.0e12, true}, "Pa");
     w.k_prime = in.optional_real("k_prime", Bound::between(0.0, 1.0e6), "N/m");
     w.tolerance = in.optional_real("tolerance", Bound::non_negative(), "(relative)");
     if (auto rounds = in.optional_integer("rounds", 0, 1000)) w.rounds = int(*rounds);
@@ -327,9 +324,7 @@ void read_infill_tables(TableReader& root, Scene& scene) {
     if (auto sweeps = in.optional_integer("relax_iterations", 1, 100000))
       settings.relax_iterations = int(*sweeps);
     if (in.has("solver"))
-      settings.solver = in.choice("solver", "smooth", {"smooth", "paper"}) == "smooth"
-                            ? InfillSolverKind::kSmooth
-                            : InfillSolverKind::kPaper;
+      settings.solver = in.choice_of("solver", InfillSolverKind::kSmooth, kInfillSolverNames);
     scene.infill = settings;
     in.finish(kAllKeys);
   }
@@ -341,7 +336,7 @@ void read_infill_tables(TableReader& root, Scene& scene) {
     for (const toml::node& item : *list) {
       TableReader in(*item.as_table(), "keyframe", detail::where(item.source()));
       Keyframe key;
-      key.time_s = in.real("time", 0.0, Bound::between(0.0, 1.0e6), "s");
+      key.time_s = in.real("time", key.time_s, Bound::between(0.0, 1.0e6), "s");
       const toml::node* corners = in.table().get("corners");
       in.allow("corners");
       const toml::array* array = corners ? corners->as_array() : nullptr;
@@ -364,29 +359,30 @@ void read_infill_tables(TableReader& root, Scene& scene) {
 void read_run_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("solver")) {
     TableReader in(*t, "solver", root.where_of("solver"));
-    scene.solver.backend = in.choice("backend", "spring-damper", kBackends);
-    scene.solver.substeps = int(in.integer("substeps", 1, 1, 1'000'000));
+    scene.solver.backend = in.choice_of("backend", scene.solver.backend, kBackendNames);
+    scene.solver.substeps = int(in.integer("substeps", scene.solver.substeps, 1, 1'000'000));
     if (auto iterations = in.optional_integer("iterations", 1, 10'000))
       scene.solver.iterations = int(*iterations);
-    scene.solver.linear = in.choice("linear", "cg", {"cg", "cholesky"});
+    scene.solver.linear = in.choice_of("linear", scene.solver.linear, kLinearSolverNames);
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("output")) {
     TableReader in(*t, "output", root.where_of("output"));
-    scene.output.file = in.string("file", "");
-    scene.output.every = int(in.integer("every", 1, 1, kMaxFrames));
-    scene.output.flush_every = int(in.integer("flush_every", 10, 1, kMaxFrames));
+    scene.output.file = in.string("file", scene.output.file);
+    scene.output.every = int(in.integer("every", scene.output.every, 1, kMaxFrames));
+    scene.output.flush_every =
+        int(in.integer("flush_every", scene.output.flush_every, 1, kMaxFrames));
     scene.output.fields = in.choice_set("fields", scene.output.fields, {"strain", "velocity"});
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("render")) {
     TableReader in(*t, "render", root.where_of("render"));
     Render render;
-    render.style = in.choice("style", "shaded", {"wireframe", "shaded", "textured"});
+    render.style = in.choice_of("style", render.style, kRenderStyleNames);
     if (auto size =
             in.int_pair("size", limits::kImageSideMin, limits::kImageSideMax, "[w, h] pixels"))
       render.size_px = *size;
-    render.texture = in.string("texture", "");
+    render.texture = in.string("texture", render.texture);
     in.finish(kAllKeys);
     scene.render = render;
   }

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "flagsim/core/enum_names.hpp"
 #include "flagsim/core/vec3.hpp"
 
 namespace flagsim::detail {
@@ -69,6 +70,11 @@ class TableReader {
   /// One of `choices`; the message lists them and suggests the closest.
   std::string choice(std::string_view key, std::string fallback,
                      std::vector<std::string_view> choices);
+  /// One of the names in `table`, as its value (choice() with the table's names).
+  template <typename E, std::size_t N>
+  E choice_of(std::string_view key, E fallback, const NameTable<E, N>& table) {
+    return *value_in(table, choice(key, std::string(name_in(table, fallback)), names_in(table)));
+  }
   /// An array of distinct strings, each one of `choices` (in the order given).
   std::vector<std::string> choice_set(std::string_view key, std::vector<std::string> fallback,
                                       std::vector<std::string_view> choices);

@@ -44,22 +44,7 @@ void set_material(const float rgb[3]) {
 }  // namespace
 
 std::optional<Style> parse_style(const std::string& name) {
-  if (name == "wireframe") return Style::kWireframe;
-  if (name == "shaded") return Style::kShaded;
-  if (name == "textured") return Style::kTextured;
-  return std::nullopt;
-}
-
-const char* to_string(Style style) {
-  switch (style) {
-    case Style::kWireframe:
-      return "wireframe";
-    case Style::kShaded:
-      return "shaded";
-    case Style::kTextured:
-      return "textured";
-  }
-  return "?";
+  return value_in(kRenderStyleNames, name);
 }
 
 std::array<float, 3> ramp_color(double t) {

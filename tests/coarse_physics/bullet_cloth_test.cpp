@@ -31,8 +31,8 @@ TEST(BulletLinkStiffness, SharesTheSpringsFractionAmongThePasses) {
 TEST(BulletCloth, HangsWithTheSameSagAsTheSpringDamper) {
   for (const auto& [pin, tolerance] : {std::pair{PinSet::kTop, test::kBulletSagTopRelTol},
                                        {PinSet::kCorners, test::kBulletSagCornersRelTol}}) {
-    const double spring = test::settled_sag(test::hanging_cloth("spring-damper", pin));
-    const double bullet = test::settled_sag(test::hanging_cloth("bullet", pin));
+    const double spring = test::settled_sag(test::hanging_cloth(Backend::kSpringDamper, pin));
+    const double bullet = test::settled_sag(test::hanging_cloth(Backend::kBullet, pin));
     EXPECT_GT(spring, 0.005) << to_string(pin);  // the elastic stretch is what is compared
     EXPECT_NEAR(bullet, spring, tolerance * spring) << to_string(pin);
     std::printf("%s: spring-damper sag %.5f m, bullet %.5f m\n", to_string(pin), spring, bullet);
@@ -46,7 +46,7 @@ TEST(BulletCloth, RestLengthsAreTheLatticeNotThePerturbedStart) {
   Scene scene = test::small_cloth(7, 9);
   scene.flag.initial_perturbation_m = 0.5;
   scene.flag.damping_per_s = 5.0;
-  scene.solver.backend = "bullet";
+  scene.solver.backend = Backend::kBullet;
   BulletCloth cloth(scene);
   const Lattice& lattice = cloth.model().lattice;
   EXPECT_GT(link_strain(lattice, cloth.state().x_m).max, 0.05);
@@ -61,7 +61,7 @@ TEST(BulletCloth, SameSceneAndSeedGiveIdenticalBits) {
   scene.wind->velocity_m_s = Vec3(8, 0, 1);
   scene.wind->turbulence = Turbulence{0.2, 0.5};
   scene.flag.initial_perturbation_m = 0.01;
-  scene.solver.backend = "bullet";
+  scene.solver.backend = Backend::kBullet;
   auto run = [&](std::uint64_t seed) {
     scene.seed = seed;
     BulletCloth cloth(scene);
@@ -78,7 +78,7 @@ TEST(BulletCloth, PinsFollowThePole) {
   Scene scene = test::small_cloth(3, 4);
   scene.pole = PoleMotion{Vec3::UnitY(), 0.1, 2.0};
   scene.fps = 8.0;  // t = 1/8 s: a quarter period of 2 Hz, the crest
-  scene.solver.backend = "bullet";
+  scene.solver.backend = Backend::kBullet;
   BulletCloth cloth(scene);
   cloth.advance_frame(nullptr);
   const Lattice& lattice = cloth.model().lattice;
@@ -89,7 +89,7 @@ TEST(BulletCloth, PinsFollowThePole) {
 
 TEST(BulletCloth, StiffestLinkClosesAQuarterOfItsErrorPerSubstep) {
   Scene scene = test::small_cloth(5, 7);
-  scene.solver.backend = "bullet";
+  scene.solver.backend = Backend::kBullet;
   BulletCloth cloth(scene);
   // substep = kStabilitySafety * the substep where the stiffest link has f = 1.
   EXPECT_LE(cloth.substep_s(), kStabilitySafety * cloth.stable_substep_s());
@@ -107,7 +107,7 @@ TEST(BulletCloth, StiffestLinkClosesAQuarterOfItsErrorPerSubstep) {
 
 TEST(BulletCloth, OnlyTheEffectsTheSceneCallsFor) {
   Scene scene = test::small_cloth(5, 7);
-  scene.solver.backend = "bullet";
+  scene.solver.backend = Backend::kBullet;
   EXPECT_EQ(BulletCloth(scene).effects(), std::vector<std::string>{"stretch"});
   scene.gravity = Gravity{};
   scene.wind = Wind{};

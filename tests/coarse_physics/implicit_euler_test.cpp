@@ -18,8 +18,8 @@ namespace {
 
 TEST(ImplicitEuler, HangsWithTheExplicitSagAtOneStepPerFrame) {
   for (PinSet pin : {PinSet::kTop, PinSet::kCorners}) {
-    const Scene implicit = test::hanging_cloth("implicit", pin);
-    const Scene spring_damper = test::hanging_cloth("spring-damper", pin);
+    const Scene implicit = test::hanging_cloth(Backend::kImplicit, pin);
+    const Scene spring_damper = test::hanging_cloth(Backend::kSpringDamper, pin);
     EXPECT_EQ(ImplicitEuler(implicit).substeps_per_frame(), 1);
     const int explicit_substeps = SpringDamperIntegrator(spring_damper).substeps_per_frame();
     EXPECT_GE(explicit_substeps, 20) << "the comparison is about large steps";
@@ -35,7 +35,7 @@ TEST(ImplicitEuler, HangsWithTheExplicitSagAtOneStepPerFrame) {
 TEST(ImplicitEuler, StaysBoundedWhereExplicitStepsWouldBlowUp) {
   // The default fabric at a tenth of a second a step, about 360x the explicit
   // limit: the flag in wind stays within a few percent of strain.
-  Scene scene = test::hanging_cloth("implicit", PinSet::kLeft);
+  Scene scene = test::hanging_cloth(Backend::kImplicit, PinSet::kLeft);
   scene.flag.stretch_modulus_n_m = 2.0e4;
   scene.flag.shear_modulus_n_m = 2.0e3;
   scene.flag.damping_per_s = 0.1;
@@ -58,23 +58,23 @@ TEST(ImplicitEuler, CholeskyOfTheProbedMatrixAgreesWithTheConjugateGradient) {
   // The direct solve assembles A from 75 probing products; the CG only ever
   // multiplies by it. Same steps, same Newton iterate: the states agree to
   // the CG's tolerance (1e-4 of the residual) on a cloth in wind with bending.
-  Scene scene = test::hanging_cloth("implicit", PinSet::kLeft);
+  Scene scene = test::hanging_cloth(Backend::kImplicit, PinSet::kLeft);
   scene.wind = Wind{};
   scene.wind->velocity_m_s = Vec3(6, 0, 2);
   scene.bending = Bending{};
   scene.bending->rigidity_j = 1e-4;
   scene.flag.initial_perturbation_m = 0.02;
   scene.solver.substeps = 4;
-  auto run = [&](const char* linear) {
+  auto run = [&](LinearSolver linear) {
     scene.solver.linear = linear;
     ImplicitEuler physics(scene);
     for (int f = 0; f < 5; ++f) physics.advance_frame(nullptr);
-    EXPECT_FALSE(physics.failure()) << linear;
+    EXPECT_FALSE(physics.failure()) << to_string(linear);
     return physics.state().x_m;
   };
-  const std::vector<Vec3> cg = run("cg"), direct = run("cholesky");
+  const std::vector<Vec3> cg = run(LinearSolver::kCg), direct = run(LinearSolver::kCholesky);
   const std::vector<Vec3> rest =
-      test::hanging_cloth("implicit", PinSet::kLeft).fine_lattice().rest_positions();
+      test::hanging_cloth(Backend::kImplicit, PinSet::kLeft).fine_lattice().rest_positions();
   double moved = 0.0, apart = 0.0;
   for (std::size_t i = 0; i < cg.size(); ++i) {
     moved = std::max(moved, (direct[i] - rest[i]).norm());
@@ -89,7 +89,7 @@ TEST(ImplicitEuler, AnUnsolvableStepIsAFailureThatSaysWhatToChange) {
   // A cloth 10^7 times stiffer than its weight needs, a second a step: the
   // system's condition number (h^2 k / m ~ 1e10) is past what the conjugate
   // gradient reaches in kMaxCgIterations.
-  Scene scene = test::hanging_cloth("implicit", PinSet::kLeft);
+  Scene scene = test::hanging_cloth(Backend::kImplicit, PinSet::kLeft);
   scene.flag.fine_rows = 65;
   scene.flag.fine_cols = 97;
   scene.flag.stretch_modulus_n_m = 1.0e10;

@@ -11,7 +11,7 @@ namespace flagsim::physics {
 namespace {
 
 TEST(Integrators, EachBackendGivesIdenticalBitsForTheSameSeed) {
-  for (const char* backend : {"spring-damper", "bullet", "implicit", "xpbd"}) {
+  for (const auto& [backend, name] : kBackendNames) {
     Scene scene = test::hanging_cloth(backend, PinSet::kLeft);
     scene.wind = Wind{};
     scene.wind->velocity_m_s = Vec3(8, 0, 1);
@@ -25,22 +25,22 @@ TEST(Integrators, EachBackendGivesIdenticalBitsForTheSameSeed) {
     };
     const auto a = run(4), b = run(4), c = run(5);
     ASSERT_EQ(a.size(), b.size());
-    EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3))) << backend;
-    EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(Vec3))) << backend;
+    EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3))) << name;
+    EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(Vec3))) << name;
   }
 }
 
 TEST(Integrators, EveryBackendStartsFromTheSameState) {
-  Scene scene = test::hanging_cloth("spring-damper", PinSet::kLeft);
+  Scene scene = test::hanging_cloth(Backend::kSpringDamper, PinSet::kLeft);
   scene.flag.initial_perturbation_m = 0.02;
   scene.seed = 3;
   const ClothState start = initial_state(scene, make_cloth_model(scene));
-  for (const char* backend : {"spring-damper", "bullet", "implicit", "xpbd"}) {
+  for (const auto& [backend, name] : kBackendNames) {
     scene.solver.backend = backend;
     const auto physics = make_integrator(scene);
     EXPECT_EQ(0, std::memcmp(physics->state().x_m.data(), start.x_m.data(),
                              start.x_m.size() * sizeof(Vec3)))
-        << backend;
+        << name;
   }
 }
 

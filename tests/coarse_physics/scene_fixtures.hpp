@@ -27,7 +27,7 @@ inline Scene small_cloth(int rows = 5, int cols = 7) {
 // A soft cloth hanging under its own weight: ~1 cm of elastic stretch, 2.6% at
 // the top edge. (Bullet's link projection softens by about strain/2: at 8% top
 // strain its sag is 8% short of the spring's.)
-inline Scene hanging_cloth(const char* backend, PinSet pin) {
+inline Scene hanging_cloth(Backend backend, PinSet pin) {
   Scene scene = test::small_cloth(7, 9);
   scene.flag.pin = pin;
   scene.flag.stretch_modulus_n_m = 60.0;
@@ -46,7 +46,7 @@ inline double settled_sag(const Scene& scene, int frames = 150) {
   for (int frame = 0; frame < frames; ++frame) physics->advance_frame(nullptr);  // 15 s
   double fastest = 0.0;
   for (const Vec3& v : physics->state().v_m_s) fastest = std::max(fastest, v.norm());
-  EXPECT_LT(fastest, 1e-2) << scene.solver.backend << ": not at rest";
+  EXPECT_LT(fastest, 1e-2) << to_string(scene.solver.backend) << ": not at rest";
   const auto rest = physics->model().lattice.rest_positions();
   double sag = 0.0;
   for (std::size_t i = 0; i < rest.size(); ++i)

@@ -15,11 +15,11 @@ namespace flagsim::physics {
 namespace {
 
 TEST(Xpbd, StaticSagConvergesToTheExplicitOneAsSubstepsGrow) {
-  const Scene spring_damper = test::hanging_cloth("spring-damper", PinSet::kTop);
+  const Scene spring_damper = test::hanging_cloth(Backend::kSpringDamper, PinSet::kTop);
   const double spring = test::settled_sag(spring_damper);
   double previous_error = INFINITY;
   for (int substeps : {2, 8, 32, 128}) {
-    Scene scene = test::hanging_cloth("xpbd", PinSet::kTop);
+    Scene scene = test::hanging_cloth(Backend::kXpbd, PinSet::kTop);
     scene.solver.substeps = substeps;
     const double sag = test::settled_sag(scene);
     const double error = std::abs(sag - spring) / spring;

@@ -53,6 +53,45 @@ TEST(SceneParser, DefaultsAndOptionalEffects) {
   EXPECT_EQ(scene.simulated_frames(), 301);  // 10 s at 30 fps, plus t = 0
 }
 
+TEST(SceneParser, ATableWithoutKeysIsItsStructsDefaults) {
+  // Every key's default lives in scene.hpp's initializers; the parser reads
+  // them there. (Before, [pole] gave 0.1 m at 1 Hz while PoleMotion{} said 0
+  // at 0 Hz, and the same for the gusts, turbulence, bending and wrinkles.)
+  const Scene scene = parse_scene(
+      "[scene]\nmode = \"hybrid\"\n[flag]\nfine = [9, 13]\ncoarse = [5, 7]\n[pole]\n"
+      "[bending]\n[wind]\n[wind.gusts]\n[wind.turbulence]\n[wrinkles]\n[solver]\n[output]\n"
+      "[render]\n",
+      "s.toml");
+  const Scene defaults;
+  EXPECT_EQ(scene.fps, defaults.fps);
+  EXPECT_EQ(scene.duration_s, defaults.duration_s);
+  EXPECT_EQ(scene.seed, defaults.seed);
+  EXPECT_EQ(scene.flag.pin, defaults.flag.pin);
+  EXPECT_EQ(scene.flag.initial_perturbation_m, defaults.flag.initial_perturbation_m);
+  EXPECT_EQ(scene.flag.shear_modulus_n_m, defaults.flag.shear_modulus_n_m);  // stretch / 10
+  ASSERT_TRUE(scene.pole && scene.bending && scene.wind && scene.wrinkles && scene.render);
+  const PoleMotion pole;
+  EXPECT_EQ(scene.pole->axis_unit, pole.axis_unit);
+  EXPECT_EQ(scene.pole->amplitude_m, pole.amplitude_m);
+  EXPECT_EQ(scene.pole->frequency_hz, pole.frequency_hz);
+  EXPECT_EQ(scene.bending->rigidity_j, Bending{}.rigidity_j);
+  ASSERT_TRUE(scene.wind->gusts && scene.wind->turbulence);
+  EXPECT_EQ(scene.wind->gusts->amplitude, Gusts{}.amplitude);
+  EXPECT_EQ(scene.wind->gusts->period_s, Gusts{}.period_s);
+  EXPECT_EQ(scene.wind->turbulence->intensity, Turbulence{}.intensity);
+  EXPECT_EQ(scene.wind->turbulence->length_scale_m, Turbulence{}.length_scale_m);
+  EXPECT_EQ(scene.wind->drag, Wind{}.drag);
+  EXPECT_EQ(scene.wrinkles->fiber_radius_m, Wrinkles{}.fiber_radius_m);
+  EXPECT_EQ(scene.wrinkles->fiber_modulus_pa, Wrinkles{}.fiber_modulus_pa);
+  EXPECT_EQ(scene.solver.backend, defaults.solver.backend);
+  EXPECT_EQ(scene.solver.substeps, defaults.solver.substeps);
+  EXPECT_EQ(scene.output.every, defaults.output.every);
+  EXPECT_EQ(scene.output.flush_every, defaults.output.flush_every);
+  EXPECT_EQ(scene.output.fields, defaults.output.fields);
+  EXPECT_EQ(scene.render->style, Render{}.style);
+  EXPECT_EQ(scene.render->size_px, Render{}.size_px);
+}
+
 TEST(SceneParser, ZeroGravityIsNoGravity) {
   const Scene scene =
       parse_scene(std::string(kMinimal) + "[gravity]\nacceleration = [0, 0, 0]\n", "s.toml");
@@ -97,7 +136,8 @@ TEST(SceneParser, LinearSolverOnlyWithTheImplicitBackend) {
   std::string implicit_scene = kMinimal;
   implicit_scene.replace(implicit_scene.find("mass-spring"), 11, "implicit");
   EXPECT_EQ(error_of(implicit_scene + cholesky), "");
-  EXPECT_EQ(parse_scene(implicit_scene + cholesky, "s.toml").solver.linear, "cholesky");
+  EXPECT_EQ(parse_scene(implicit_scene + cholesky, "s.toml").solver.linear,
+            LinearSolver::kCholesky);
   // The mode chosen on the command line: named in a note, not refused.
   const Scene scene = parse_scene(implicit_scene + cholesky, "s.toml",
                                   std::vector<std::string>{"scene.mode=\"xpbd\""});
@@ -115,7 +155,7 @@ TEST(SceneParser, RenderTableIsReadAndChecked) {
   const Scene scene = parse_scene(
       std::string(kMinimal) + "[render]\nstyle = \"wireframe\"\nsize = [640, 360]\n", "s.toml");
   ASSERT_TRUE(scene.render.has_value());
-  EXPECT_EQ(scene.render->style, "wireframe");
+  EXPECT_EQ(scene.render->style, RenderStyle::kWireframe);
   EXPECT_EQ(scene.render->size_px, (std::array<int, 2>{640, 360}));
   EXPECT_NE(error_of(std::string(kMinimal) + "[render]\nstyle = \"sketch\"\n")
                 .find("render.style: expected one of \"wireframe\", \"shaded\", \"textured\""),

@@ -23,14 +23,16 @@ TEST(Scene, FramesIncludeTheStartAndTheLatticeIsTheFineOne) {
 
 TEST(Scene, EachModeRunsItsBackend) {
   const Scene hybrid = default_scene();
-  EXPECT_EQ(backend_of(hybrid), "spring-damper");  // solver.backend, its default
-  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kMassSpring)), "spring-damper");
-  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kBullet)), "bullet");
-  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kImplicit)), "implicit");
-  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kXpbd)), "xpbd");
-  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kInfill)), "");
+  EXPECT_EQ(backend_of(hybrid), Backend::kSpringDamper);  // solver.backend, its default
+  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kMassSpring)), Backend::kSpringDamper);
+  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kBullet)), Backend::kBullet);
+  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kImplicit)), Backend::kImplicit);
+  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kXpbd)), Backend::kXpbd);
+  EXPECT_EQ(backend_of(in_mode(hybrid, Mode::kInfill)), std::nullopt);
+  EXPECT_EQ(backend_name_of(in_mode(hybrid, Mode::kInfill)), "");
+  EXPECT_EQ(backend_name_of(in_mode(hybrid, Mode::kMassSpring)), "spring-damper");
   // A full-lattice mode names its own integrator whatever solver.backend says.
-  EXPECT_EQ(with_resolved_backend(in_mode(hybrid, Mode::kXpbd)).solver.backend, "xpbd");
+  EXPECT_EQ(with_resolved_backend(in_mode(hybrid, Mode::kXpbd)).solver.backend, Backend::kXpbd);
 }
 
 TEST(Scene, VariantsChangeOnlyWhatTheyNameAndLeaveTheSceneAsItWas) {

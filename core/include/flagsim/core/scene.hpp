@@ -12,12 +12,20 @@
 #include <string_view>
 #include <vector>
 
+#include "flagsim/core/enum_names.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/vec3.hpp"
 
 namespace flagsim {
 
 enum class Mode { kHybrid, kMassSpring, kBullet, kImplicit, kXpbd, kInfill };
+/// scene.mode's names (contract).
+inline constexpr NameTable<Mode, 6> kModeNames = {{{Mode::kHybrid, "hybrid"},
+                                                   {Mode::kMassSpring, "mass-spring"},
+                                                   {Mode::kBullet, "bullet"},
+                                                   {Mode::kImplicit, "implicit"},
+                                                   {Mode::kXpbd, "xpbd"},
+                                                   {Mode::kInfill, "infill"}}};
 
 /// The modes that simulate every node of flag.fine (the references).
 inline bool is_full_lattice(Mode mode) {
@@ -25,6 +33,12 @@ inline bool is_full_lattice(Mode mode) {
          mode == Mode::kXpbd;
 }
 enum class PinSet { kLeft, kRight, kTop, kCorners, kNone };
+/// flag.pin's names (contract).
+inline constexpr NameTable<PinSet, 5> kPinNames = {{{PinSet::kLeft, "left"},
+                                                    {PinSet::kRight, "right"},
+                                                    {PinSet::kTop, "top"},
+                                                    {PinSet::kCorners, "corners"},
+                                                    {PinSet::kNone, "none"}}};
 
 struct FlagSpec {
   double width_m = 1.5;
@@ -44,11 +58,15 @@ struct FlagSpec {
   double initial_perturbation_m = 0.0;
 };
 
+// The optional tables' structs exist only where the scene has the table; each
+// member's initializer is the default of its key there (contract), and the
+// parser reads it from here (one home per default).
+
 /// [pole]: the pinned nodes move as rest + axis * amplitude * sin(2 pi f t).
 struct PoleMotion {
   Vec3 axis_unit = Vec3::UnitY();  ///< normalised from the scene's axis
-  double amplitude_m = 0.0;
-  double frequency_hz = 0.0;
+  double amplitude_m = 0.1;
+  double frequency_hz = 1.0;
 };
 
 struct Gravity {
@@ -56,12 +74,12 @@ struct Gravity {
 };
 
 struct Gusts {
-  double amplitude = 0.0;  ///< fraction of the mean speed
-  double period_s = 1.0;
+  double amplitude = 0.2;  ///< fraction of the mean speed
+  double period_s = 2.0;
 };
 
 struct Turbulence {
-  double intensity = 0.0;  ///< std / mean speed
+  double intensity = 0.1;  ///< std / mean speed
   double length_scale_m = 1.0;
 };
 
@@ -76,13 +94,14 @@ struct Wind {
 
 /// [bending]: bending rigidity of the cloth in the coarse physics.
 struct Bending {
-  double rigidity_j = 0.0;  ///< D, N m = J (moment per unit width per unit curvature)
+  /// D, N m = J (moment per unit width per unit curvature); the key is "stiffness"
+  double rigidity_j = 1.0e-4;
 };
 
 /// [wrinkles]: the paper's step 3.5 (eqs. (1)-(13)).
 struct Wrinkles {
-  double fiber_radius_m = 0.0;
-  double fiber_modulus_pa = 0.0;
+  double fiber_radius_m = 1.0e-3;
+  double fiber_modulus_pa = 1.0e9;
   std::optional<double> k_prime;
   std::optional<double> tolerance;
   std::optional<int> rounds;
@@ -93,6 +112,8 @@ enum class InfillSolverKind {
   kSmooth,  ///< whole-fiber infill on the coarse nodes' mean surface (hybrid default)
   kPaper,   ///< per-cell steps 3.1-3.5 with point-wise relaxation (infill-mode default)
 };
+inline constexpr NameTable<InfillSolverKind, 2> kInfillSolverNames = {
+    {{InfillSolverKind::kSmooth, "smooth"}, {InfillSolverKind::kPaper, "paper"}}};
 
 struct InfillSettings {
   /// Most passes of the paper solver's step 3.4; absent: its default for the mode.
@@ -101,19 +122,30 @@ struct InfillSettings {
   std::optional<InfillSolverKind> solver;
 };
 
-/// The physics backends solver.backend names (contract), in the order users are told them.
-inline const std::vector<std::string_view> kBackends = {"spring-damper", "bullet", "implicit",
-                                                        "xpbd"};
+/// The physics integrators (solver.backend in hybrid mode; each full-lattice
+/// mode runs one of them).
+enum class Backend { kSpringDamper, kBullet, kImplicit, kXpbd };
+/// solver.backend's names (contract), in the order users are told them.
+inline constexpr NameTable<Backend, 4> kBackendNames = {{{Backend::kSpringDamper, "spring-damper"},
+                                                         {Backend::kBullet, "bullet"},
+                                                         {Backend::kImplicit, "implicit"},
+                                                         {Backend::kXpbd, "xpbd"}}};
+
+/// The implicit backend's linear solver (solver.linear).
+enum class LinearSolver {
+  kCg,        ///< matrix-free preconditioned conjugate gradient
+  kCholesky,  ///< sparse LDL^T of the assembled matrix
+};
+inline constexpr NameTable<LinearSolver, 2> kLinearSolverNames = {
+    {{LinearSolver::kCg, "cg"}, {LinearSolver::kCholesky, "cholesky"}}};
 
 struct Solver {
-  std::string backend = "spring-damper";
+  Backend backend = Backend::kSpringDamper;
   int substeps = 1;  ///< minimum substeps per output frame
   /// Passes per substep: Bullet's solver iterations (default 10), Newton
   /// iterations of "implicit" (default 1), constraint passes of "xpbd" (default 1).
   std::optional<int> iterations;
-  /// The implicit backend's linear solver: "cg" (matrix-free preconditioned
-  /// conjugate gradient) or "cholesky" (sparse LDL^T of the assembled matrix).
-  std::string linear = "cg";
+  LinearSolver linear = LinearSolver::kCg;
 };
 
 struct Keyframe {
@@ -133,8 +165,15 @@ struct Output {
   }
 };
 
+/// How frames are drawn (render.style, --style).
+enum class RenderStyle { kWireframe, kShaded, kTextured };
+inline constexpr NameTable<RenderStyle, 3> kRenderStyleNames = {
+    {{RenderStyle::kWireframe, "wireframe"},
+     {RenderStyle::kShaded, "shaded"},
+     {RenderStyle::kTextured, "textured"}}};
+
 struct Render {
-  std::string style = "shaded";
+  RenderStyle style = RenderStyle::kShaded;
   std::array<int, 2> size_px = {1280, 720};
   std::string texture;
 };
@@ -176,19 +215,26 @@ struct Scene {
   Lattice fine_lattice() const;
 };
 
+// Each enum's name as the scene file spells it (null-terminated).
 const char* to_string(Mode mode);
+const char* to_string(PinSet pin);
 const char* to_string(InfillSolverKind kind);
-/// The infill a scene runs: [infill] solver, else smooth in hybrid mode (it
-/// The physics backend the scene runs: the one its full-lattice mode names
-/// ("mass-spring" runs "spring-damper"), solver.backend in hybrid mode, "" in
-/// infill mode (no physics).
-std::string backend_of(const Scene& scene);
+const char* to_string(Backend backend);
+const char* to_string(LinearSolver linear);
+const char* to_string(RenderStyle style);
 
+/// The physics backend the scene runs: the one its full-lattice mode names
+/// ("mass-spring" runs spring-damper), solver.backend in hybrid mode, none in
+/// infill mode (no physics).
+std::optional<Backend> backend_of(const Scene& scene);
+/// backend_of's name, "" in infill mode (the reports' backend column).
+std::string backend_name_of(const Scene& scene);
+
+/// The infill a scene runs: [infill] solver, else smooth in hybrid mode (it
 /// follows many coarse nodes) and paper in infill mode (corners only, Figs. 9-10).
 InfillSolverKind infill_solver_of(const Scene& scene);
 /// The paper solver's 3.4 cap: [infill] relax_iterations, else the mode's default.
 int paper_relax_sweeps_of(const Scene& scene);
-const char* to_string(PinSet pin);
 
 // Variants of a scene, each derived by one named function here rather than
 // by editing a copy where it is needed.
@@ -200,7 +246,8 @@ Scene in_mode(const Scene& scene, Mode mode);
 /// reference's substeps until it is as accurate as the hybrid).
 Scene with_substeps(const Scene& scene, int substeps);
 /// The same scene with solver.backend the integrator its mode runs
-/// (backend_of): what an integrator factory takes in every mode.
+/// (backend_of; unchanged in infill mode): what an integrator factory takes
+/// in every mode.
 Scene with_resolved_backend(const Scene& scene);
 /// A hybrid scene's cloth on its coarse lattice (flag.coarse) as a
 /// full-lattice scene: the same continuum parameters, so the same cloth

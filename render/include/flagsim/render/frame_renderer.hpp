@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "flagsim/core/scene.hpp"
 #include "flagsim/core/vec3.hpp"
 #include "flagsim/render/camera.hpp"
 #include "flagsim/render/image.hpp"
@@ -19,11 +20,12 @@
 
 namespace flagsim::render {
 
-enum class Style { kWireframe, kShaded, kTextured };
+/// The scene's render.style (kRenderStyleNames), as drawn here.
+using Style = RenderStyle;
+using flagsim::to_string;
 
 /// "wireframe" / "shaded" / "textured", or nullopt.
 std::optional<Style> parse_style(const std::string& name);
-const char* to_string(Style style);
 
 /// One frame: J x K positions, m, row-major (contract lattice order), and the
 /// top of the pole (drawn down to the ground) if the cloth hangs on one.
