@@ -1,57 +1,43 @@
 // `flag-sim compare`: the hybrid against a full-lattice reference on the same
 // dense lattice, same seed and start; and the tracking run that isolates the
 // infill's own error (report.hpp, analysis/metrics.hpp).
+#include "compare_command.hpp"
+
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
+#include <optional>
 
-#include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
+#include "scene_commands.hpp"
 
 namespace flagsim::app {
-namespace fs = std::filesystem;
 
-void check_report_path(const std::string& path) {
-  if (path.empty()) return;
-  const fs::path parent = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : ".";
-  std::error_code ec;
-  if (!fs::is_directory(parent, ec) || access(parent.c_str(), W_OK) != 0 ||
-      fs::is_directory(path, ec))
-    throw UserError(
-        fmt::format("-o {}: cannot write a report there (does {} exist?)", path, parent.string()));
-}
-
-void write_report(const std::string& path, const std::vector<ReportRow>& rows) {
-  if (path.empty()) return;
-  std::ofstream out(path);
-  out << csv_header() << "\n";
-  for (const ReportRow& row : rows) out << csv_line(row) << "\n";
-  if (!out) throw IoError(fmt::format("{}: writing the report failed", path));
-}
-
-std::vector<std::string> with_mode(std::vector<std::string> sets, const std::string& mode) {
-  sets.push_back(fmt::format("scene.mode=\"{}\"", mode));
+std::vector<std::string> with_mode(std::vector<std::string> sets, Mode mode) {
+  sets.push_back(fmt::format("scene.mode=\"{}\"", to_string(mode)));
   return sets;
 }
 
 // The full-lattice references `--reference` names, the first the one every
 // error is measured against.
-std::vector<std::string> references_of(const std::string& reference) {
-  static const std::vector<std::string> every_reference = {"mass-spring", "bullet", "implicit",
-                                                           "xpbd"};
+std::vector<Mode> references_of(const std::string& reference) {
+  std::vector<Mode> every_reference;
+  for (const NamedValue<Mode>& entry : kModeNames)
+    if (is_full_lattice(entry.value)) every_reference.push_back(entry.value);
   if (reference == "all") return every_reference;
-  if (std::find(every_reference.begin(), every_reference.end(), reference) == every_reference.end())
-    throw UserError(fmt::format(
-        "--reference {}: expected mass-spring, bullet, implicit, xpbd or all", reference));
-  return {reference};
+  const std::optional<Mode> mode = value_in(kModeNames, reference);
+  if (!mode || !is_full_lattice(*mode)) {
+    std::string choices;
+    for (const Mode m : every_reference) choices += fmt::format("{}, ", to_string(m));
+    choices.resize(choices.size() - 2);  // "mass-spring, bullet, implicit, xpbd"
+    throw UserError(fmt::format("--reference {}: expected {} or all", reference, choices));
+  }
+  return {*mode};
 }
 
 // Implicit Euler and XPBD choose no step count of their own (accuracy, not
@@ -61,8 +47,8 @@ std::vector<std::string> references_of(const std::string& reference) {
 // count their stability limit sets.
 constexpr int kSubstepDoublings = 8;
 
-bool steps_by_accuracy(const std::string& mode) {
-  return mode == "implicit" || mode == "xpbd";
+bool steps_by_accuracy(Mode mode) {
+  return mode == Mode::kImplicit || mode == Mode::kXpbd;
 }
 
 struct ReferenceRun {
@@ -75,14 +61,14 @@ struct ReferenceRun {
 const ReportRow* best_reference(const std::vector<ReportRow>& rows, double p99) {
   const ReportRow* best = nullptr;
   for (const ReportRow& row : rows)
-    if (row.status == "complete" && row.p99_strain <= p99 &&
+    if (row.status == RunState::kComplete && row.p99_strain <= p99 &&
         (!best || row.ms_per_frame < best->ms_per_frame))
       best = &row;
   return best;
 }
 
 int compare_command(const CompareOptions& options) {
-  const std::vector<std::string> modes = references_of(options.reference);
+  const std::vector<Mode> modes = references_of(options.reference);
   if (!(options.horizon_s > 0.0))
     throw UserError(fmt::format("--horizon {}: expected a duration > 0 s", options.horizon_s));
   std::vector<std::string> sets = options.sets;
@@ -92,10 +78,10 @@ int compare_command(const CompareOptions& options) {
           fmt::format("--frames {}: a comparison needs at least 2 frames", *options.frames));
     sets.push_back(fmt::format("scene.frames={}", *options.frames));
   }
-  const Scene hybrid_scene = load_scene(options.scene_path, with_mode(sets, "hybrid"));
+  const Scene hybrid_scene = load_scene(options.scene_path, with_mode(sets, Mode::kHybrid));
   std::vector<Scene> reference_scenes;
   reference_scenes.reserve(modes.size());
-  for (const std::string& mode : modes)
+  for (const Mode mode : modes)
     reference_scenes.push_back(load_scene(options.scene_path, with_mode(sets, mode)));
   check_report_path(options.output);
   FileRoles files;
@@ -118,14 +104,16 @@ int compare_command(const CompareOptions& options) {
   for (std::size_t m = 0; m < modes.size(); ++m) {
     Scene scene = reference_scenes[m];
     for (int doubling = 0;; ++doubling) {
-      Progress progress(show, scene.simulated_frames(), fmt::format("reference ({})", modes[m]));
+      Progress progress(show, scene.simulated_frames(),
+                        fmt::format("reference ({})", to_string(modes[m])));
       RunRecord record = record_run(scene, &progress);
       const bool good = record.status.state == RunState::kComplete &&
                         describe(scene, record, record, nullptr, window).p99_strain <= hybrid_p99;
       const int ran = record.substeps_per_frame;
-      const std::string label = steps_by_accuracy(modes[m])
-                                    ? fmt::format("reference ({} {} substeps/frame)", modes[m], ran)
-                                    : fmt::format("reference ({})", modes[m]);
+      const std::string label =
+          steps_by_accuracy(modes[m])
+              ? fmt::format("reference ({} {} substeps/frame)", to_string(modes[m]), ran)
+              : fmt::format("reference ({})", to_string(modes[m]));
       references.push_back({scene, std::move(record), label});
       if (!steps_by_accuracy(modes[m]) || good || doubling == kSubstepDoublings) break;
       scene = with_substeps(scene, 2 * ran);  // from what it ran at (XPBD's minimum may be higher)
@@ -170,7 +158,7 @@ int compare_command(const CompareOptions& options) {
   fmt::print(
       "short horizon: the first {:.3g} s; flap, mean shape and wrinkles: the second half "
       "of the run; errors against the {} reference{}\n",
-      options.horizon_s, modes.front(),
+      options.horizon_s, to_string(modes.front()),
       options.output.empty() ? "" : fmt::format(" -> {}", options.output));
   return int(ExitCode::kSuccess);
 }

@@ -1,5 +1,7 @@
 // `flag-sim export`: an output file's dense lattice for DCC tools (Blender):
 // a PC2 point cache with an OBJ of the topology, one OBJ, or an OBJ per frame.
+#include "export_command.hpp"
+
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -7,7 +9,6 @@
 #include <fstream>
 #include <optional>
 
-#include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/stop_request.hpp"

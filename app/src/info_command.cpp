@@ -1,5 +1,7 @@
 // `flag-sim info OUT.h5 [--json]`: what a run was and how it went, as text for
 // people or as one JSON object for scripts (the same facts, named the same).
+#include "info_command.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,7 +9,6 @@
 #include <numeric>
 #include <sstream>
 
-#include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/data/output_reader.hpp"
 

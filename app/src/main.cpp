@@ -9,7 +9,8 @@
 #include <exception>
 #include <string_view>
 
-#include "commands.hpp"
+#include "compare_command.hpp"
+#include "export_command.hpp"
 #include "flagsim/coarse_physics/bullet_cloth.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
@@ -17,7 +18,12 @@
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/hdf5_library.hpp"
 #include "flagsim/render/offscreen_context.hpp"
+#include "info_command.hpp"
+#include "plot_command.hpp"
 #include "render_command.hpp"
+#include "run_command.hpp"
+#include "scene_commands.hpp"
+#include "sweep_command.hpp"
 
 namespace {
 

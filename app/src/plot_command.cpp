@@ -1,10 +1,11 @@
 // `flag-sim plot`: a run's statistics over time as an image (stats_plot.py).
+#include "plot_command.hpp"
+
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <filesystem>
 
-#include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/data/output_reader.hpp"

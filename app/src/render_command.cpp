@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <regex>
 
-#include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/limits.hpp"
@@ -24,6 +23,7 @@
 #include "frame_range.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
+#include "render_command.hpp"
 
 namespace flagsim::app {
 namespace fs = std::filesystem;
@@ -140,9 +140,8 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   if (request.camera) {
     const auto view = render::parse_view(*request.camera);
     if (!view)
-      throw UserError(
-          fmt::format("--camera {}: expected one of \"three-quarter\", \"front\", \"side\"",
-                      printable(*request.camera)));
+      throw UserError(fmt::format("--camera {}: expected one of \"{}\"", printable(*request.camera),
+                                  fmt::join(names_in(render::kViewNames), "\", \"")));
     plan.view = *view;
   }
   if (request.frames)
@@ -155,13 +154,11 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
     throw UserError(fmt::format("--eye {}: give --eye or --camera {}, not both", *request.eye,
                                 *request.camera));
   if (request.color) {
-    if (*request.color == "strain")
-      plan.color = ColorBy::kStrain;
-    else if (*request.color == "speed")
-      plan.color = ColorBy::kSpeed;
-    else
-      throw UserError(
-          fmt::format("--color {}: expected \"strain\" or \"speed\"", printable(*request.color)));
+    const std::optional<ColorBy> color = value_in(kColorByNames, *request.color);
+    if (!color)
+      throw UserError(fmt::format("--color {}: expected \"{}\"", printable(*request.color),
+                                  fmt::join(names_in(kColorByNames), "\" or \"")));
+    plan.color = *color;
     if (plan.style != render::Style::kShaded)
       throw UserError(fmt::format("--color {}: colours the shaded style (not {})", *request.color,
                                   render::to_string(plan.style)));

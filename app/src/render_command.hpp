@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "flagsim/core/enum_names.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/scene.hpp"
 #include "flagsim/render/camera.hpp"
@@ -32,6 +33,9 @@ struct RenderRequest {
 
 /// What the shaded cloth is coloured by (--color).
 enum class ColorBy { kNone, kStrain, kSpeed };
+/// --color's names (kNone: no --color).
+inline constexpr NameTable<ColorBy, 2> kColorByNames = {
+    {{ColorBy::kStrain, "strain"}, {ColorBy::kSpeed, "speed"}}};
 
 /// Everything a render needs, checked before anything is written or run.
 struct RenderPlan {
@@ -65,5 +69,9 @@ double frame_rate_of(const data::OutputReader& reader);
 
 /// Draws every frame of the file `h5_path` as planned. Returns the summary line.
 std::string render_file(const std::string& h5_path, const RenderPlan& plan);
+
+/// `render`: the frames of the output file `h5_path` as the request says.
+/// Returns the process exit code.
+int render_command(const std::string& h5_path, const RenderRequest& request);
 
 }  // namespace flagsim::app

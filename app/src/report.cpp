@@ -1,9 +1,12 @@
 #include "report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "flagsim/core/errors.hpp"
@@ -71,7 +74,7 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
       analysis::strain_distribution(run.lattice, run.frames);
   row.max_strain = strain.max;
   row.p99_strain = strain.p99;
-  row.status = std::string(to_string(run.status.state));
+  row.status = run.status.state;
   const int horizon = std::max(1, int(std::lround(window.horizon_s * scene.fps)));
   const int half = int(std::min(run.frames.size(), reference.frames.size()) / 2);
   row.short_horizon_rms_m = analysis::short_horizon_rms(run.frames, reference.frames, horizon);
@@ -111,7 +114,7 @@ std::string csv_line(const ReportRow& r) {
       r.frames, r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
       optional_text(r.short_horizon_rms_m), optional_text(r.tracking_rms_m),
       optional_text(r.flap_hz), optional_text(r.flap_rel_error), optional_text(r.mean_shape_rms_m),
-      optional_text(r.wrinkle_wavelength_m), r.status, r.infill_solver, r.best_reference,
+      optional_text(r.wrinkle_wavelength_m), to_string(r.status), r.infill_solver, r.best_reference,
       optional_text(r.speedup_vs_best_reference));
 }
 
@@ -181,7 +184,11 @@ ReportRow parse_csv_line(const std::string& line) {
   r.flap_rel_error = optional(17);
   r.mean_shape_rms_m = optional(18);
   r.wrinkle_wavelength_m = optional(19);
-  r.status = text(20);
+  const std::optional<RunState> status = value_in(kRunStateNames, text(20));
+  if (!status)
+    throw UserError(fmt::format("a report row's status \"{}\": expected {}", text(20),
+                                fmt::join(names_in(kRunStateNames), ", ")));
+  r.status = *status;
   r.infill_solver = text(21);
   r.best_reference = text(22);
   r.speedup_vs_best_reference = optional(23);
@@ -203,6 +210,25 @@ std::string text_table(const std::vector<ReportRow>& rows) {
         r.flap_hz ? fmt::format("{:.2f}", *r.flap_hz) : "-", mm(r.mean_shape_rms_m),
         r.wrinkle_wavelength_m ? fmt::format("{:.3f}", *r.wrinkle_wavelength_m) : "-");
   return out;
+}
+
+void check_report_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path.empty()) return;
+  const fs::path parent = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : ".";
+  std::error_code ec;
+  if (!fs::is_directory(parent, ec) || access(parent.c_str(), W_OK) != 0 ||
+      fs::is_directory(path, ec))
+    throw UserError(
+        fmt::format("-o {}: cannot write a report there (does {} exist?)", path, parent.string()));
+}
+
+void write_report(const std::string& path, const std::vector<ReportRow>& rows) {
+  if (path.empty()) return;
+  std::ofstream out(path);
+  out << csv_header() << "\n";
+  for (const ReportRow& row : rows) out << csv_line(row) << "\n";
+  if (!out) throw IoError(fmt::format("{}: writing the report failed", path));
 }
 
 }  // namespace flagsim::app

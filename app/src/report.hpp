@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "flagsim/core/run_status.hpp"
 #include "flagsim/core/scene.hpp"
 #include "run_record.hpp"
 
@@ -19,7 +20,7 @@ struct ReportRow {
   // Against the reference; empty where it does not apply.
   std::optional<double> short_horizon_rms_m, tracking_rms_m, flap_hz, flap_rel_error,
       mean_shape_rms_m, wrinkle_wavelength_m;
-  std::string status;
+  RunState status = RunState::kComplete;
   std::string infill_solver;  ///< "smooth" or "paper"; empty without an infill
   /// compare, on the hybrid's row: the fastest full-lattice reference run
   /// whose p99 strain is no worse than the hybrid's (its label), and its
@@ -50,5 +51,11 @@ ReportRow parse_csv_line(const std::string& line);
 
 /// The short human-readable table printed to stdout.
 std::string text_table(const std::vector<ReportRow>& rows);
+
+/// Checks that a report can be written at `path` (its directory exists and is
+/// writable); empty is fine. Throws UserError.
+void check_report_path(const std::string& path);
+/// The rows as CSV at `path` (csv_header, then a csv_line each); empty: nothing. Throws IoError.
+void write_report(const std::string& path, const std::vector<ReportRow>& rows);
 
 }  // namespace flagsim::app

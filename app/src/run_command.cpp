@@ -1,5 +1,7 @@
 // `flag-sim run`: scene -> solver -> frames on disk, with divergence checks,
 // interruption and the progress line.
+#include "run_command.hpp"
+
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -9,7 +11,6 @@
 #include <filesystem>
 #include <tuple>
 
-#include "commands.hpp"
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
@@ -21,6 +22,7 @@
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "render_command.hpp"
+#include "scene_commands.hpp"
 
 namespace flagsim::app {
 namespace {

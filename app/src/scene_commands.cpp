@@ -1,7 +1,8 @@
 // `flag-sim validate` and `flag-sim scene`, and the shared scene loading.
+#include "scene_commands.hpp"
+
 #include <fmt/format.h>
 
-#include "commands.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/hybrid/simulation.hpp"

@@ -3,6 +3,8 @@
 // measured against the mass-spring reference (report.hpp). Points are
 // independent: --point I runs one, --jobs N runs N at a time as child
 // processes, --merge joins the CSVs of points run anywhere.
+#include "sweep_command.hpp"
+
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -17,7 +19,6 @@
 #include <map>
 #include <regex>
 
-#include "commands.hpp"
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
@@ -26,6 +27,7 @@
 #include "python_plot.hpp"
 #include "report.hpp"
 #include "run_record.hpp"
+#include "scene_commands.hpp"
 #include "slurm_sweep.hpp"
 #include "sweep_grid.hpp"
 

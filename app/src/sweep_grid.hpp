@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
+#include "sweep_command.hpp"
 
 namespace flagsim::app {
 

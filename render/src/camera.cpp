@@ -6,13 +6,6 @@
 
 namespace flagsim::render {
 
-std::optional<View> parse_view(std::string_view name) {
-  if (name == "three-quarter") return View::kThreeQuarter;
-  if (name == "front") return View::kFront;
-  if (name == "side") return View::kSide;
-  return std::nullopt;
-}
-
 Camera frame_bounds(const Bounds& bounds, double aspect, View view) {
   Camera camera;
   const Vec3 centre = 0.5 * (bounds.low + bounds.high);

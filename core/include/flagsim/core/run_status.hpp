@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "flagsim/core/enum_names.hpp"
 #include "flagsim/core/errors.hpp"
 
 namespace flagsim {
@@ -15,19 +16,15 @@ enum class RunState {
   kInterrupted,  ///< SIGINT / SIGTERM, or no room left for more frames
 };
 
-/// The contract's word for it: "running", "complete", "diverged", "interrupted".
+/// The contract's words for them (root attribute `status`, the reports' column).
+inline constexpr NameTable<RunState, 4> kRunStateNames = {
+    {{RunState::kRunning, "running"},
+     {RunState::kComplete, "complete"},
+     {RunState::kDiverged, "diverged"},
+     {RunState::kInterrupted, "interrupted"}}};
+
 constexpr std::string_view to_string(RunState state) {
-  switch (state) {
-    case RunState::kRunning:
-      return "running";
-    case RunState::kComplete:
-      return "complete";
-    case RunState::kDiverged:
-      return "diverged";
-    case RunState::kInterrupted:
-      return "interrupted";
-  }
-  return "?";
+  return name_in(kRunStateNames, state);
 }
 
 struct RunStatus {

@@ -5,6 +5,7 @@
 #include <span>
 #include <string_view>
 
+#include "flagsim/core/enum_names.hpp"
 #include "flagsim/core/vec3.hpp"
 
 namespace flagsim::render {
@@ -36,8 +37,13 @@ enum class View {
   kFront,         ///< straight in front (+z)
   kSide,          ///< from the fly end (+x), a little above: the flapping in profile
 };
+/// --camera's names, in the order users are told them.
+inline constexpr NameTable<View, 3> kViewNames = {
+    {{View::kThreeQuarter, "three-quarter"}, {View::kFront, "front"}, {View::kSide, "side"}}};
 /// "three-quarter", "front" or "side"; nullopt otherwise.
-std::optional<View> parse_view(std::string_view name);
+inline std::optional<View> parse_view(std::string_view name) {
+  return value_in(kViewNames, name);
+}
 
 /// A camera that sees all of `bounds` in an image of the given aspect
 /// (width / height) from `view`, looking at the centre of the bounds, the

@@ -1,0 +1,24 @@
+#pragma once
+// `flag-sim validate` and `flag-sim scene`, and the scene loading every command shares.
+// Returns the process exit code (contract: "Exit codes"); user mistakes are
+// thrown as UserError and reported by main.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "flagsim/core/scene.hpp"
+#include "flagsim/core/scene_parser.hpp"
+
+namespace flagsim::app {
+
+/// Reads the scene a command names (or the default one), with the overrides.
+Scene load_scene(const std::string& scene_path, std::span<const Override> overrides);
+Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides);
+
+int validate_command(const std::string& scene_path, const std::vector<std::string>& sets);
+/// `scene`: the embedded default scene as shipped (--default), or a scene (a
+/// file, or the default one) with its --set overrides applied, as TOML.
+int scene_command(const std::string& scene_path, bool print_default,
+                  const std::vector<std::string>& sets);
+
+}  // namespace flagsim::app

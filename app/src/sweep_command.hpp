@@ -1,0 +1,34 @@
+#pragma once
+// `flag-sim sweep`: a grid of hybrid runs against one reference.
+// Returns the process exit code (contract: "Exit codes"); user mistakes are
+// thrown as UserError and reported by main.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace flagsim::app {
+
+struct SweepOptions {
+  std::string scene_path;
+  std::string coarse, substeps, relax, infill, backend;  ///< comma-separated lists
+  std::string output, plot;
+  std::vector<std::string> sets;
+  std::optional<long long> frames;
+  std::optional<int> point;
+  int jobs = 1;
+  double horizon_s = 0.5;
+  std::vector<std::string> merge;  ///< CSVs to join instead of running
+  /// The reference run, shared: read from this file when it is there, else
+  /// run and saved there (sweep --jobs uses one in its points' directory).
+  std::string reference_file;
+  bool list = false;      ///< print the points and exit
+  bool resume = false;    ///< with --point: nothing to do when -o already holds its row
+  std::string slurm_dir;  ///< --slurm DIR: write Slurm batch jobs instead of running
+  bool submit = false;    ///< --submit: and sbatch them
+  std::vector<std::string> slurm_args;  ///< --slurm-arg: extra #SBATCH options
+  bool quiet = false;
+};
+/// argv: the command line that started this sweep (children re-run it with --point).
+int sweep_command(const SweepOptions& options, const std::vector<std::string>& argv);
+
+}  // namespace flagsim::app
