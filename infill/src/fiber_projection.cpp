@@ -69,7 +69,7 @@ Lanes splat(double value) {
 }
 
 __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lanes(
-    int links, double rest_m, double tolerance, int steps, int* steps_made) {
+    int links, double rest_m, double tolerance, int steps, double relaxation, int* steps_made) {
   constexpr int L = kLanes;
   const Lanes zero = splat(0.0), one = splat(1.0), rest = splat(rest_m),
               inv_rest = splat(1.0 / rest_m), degenerate = splat(1e-12 * rest_m);
@@ -181,11 +181,12 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
       const Lanes step2 = fx * fx + fy * fy + fz * fz;
       largest2 = step2 > largest2 ? step2 : largest2;
     }
-    Lanes scale = one;
+    Lanes scale = splat(relaxation);
     const double limit = kMaxStep * links * rest_m;
     for (int l = 0; l < L; ++l)
       if (!(largest2[l] <= limit * limit))
-        scale[l] *= std::isfinite(largest2[l]) ? limit / std::sqrt(largest2[l]) : 0.0;
+        scale[l] =
+            std::isfinite(largest2[l]) ? std::min(scale[l], limit / std::sqrt(largest2[l])) : 0.0;
     for (int j = 0; j <= links; ++j) {
       const int a = j * L;
       store(x + a, load(x + a) + scale * load(step_x + a));
@@ -196,7 +197,8 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
 }
 
 bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, double tolerance,
-                                     int steps, int* steps_made, bool check) {
+                                     int steps, double relaxation, int* steps_made,
+                                     int* fibers_outside, bool check) {
   const int J = lattice_.rows, K = lattice_.cols;
   const int fibers = rows ? J : K, links = rows ? K - 1 : J - 1;
   const std::size_t stride = rows ? 1 : std::size_t(K);
@@ -237,6 +239,7 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   active_.clear();
   for (int f = 0; f < fibers; ++f)
     if (fiber_flag_[std::size_t(f)]) active_.push_back(f);
+  *fibers_outside = int(active_.size());
   // kLanes at a time; a short last group repeats its last fiber, written once.
   for (std::size_t g = 0; g < active_.size(); g += kLanes) {
     int lane_fiber[kLanes];
@@ -263,7 +266,7 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
         }
       }
     int lane_steps = 0;
-    step_lanes(links, rest_m, tolerance, steps, &lane_steps);
+    step_lanes(links, rest_m, tolerance, steps, relaxation, &lane_steps);
     const int distinct = int(std::min<std::size_t>(kLanes, active_.size() - g));
     *steps_made += lane_steps;
     for (int i = 0; i <= links; ++i)
@@ -295,15 +298,23 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
   };
   squared_bounds(bands_.rows(), fixed_.rows(), lattice_.spacing_x_m, row_low2_, row_high2_);
   squared_bounds(bands_.cols(), fixed_.cols(), lattice_.spacing_y_m, col_low2_, col_high2_);
+  int outside_before = std::numeric_limits<int>::max();
   for (int round = 1; round <= max_rounds && !stop_requested(); ++round) {
     report.rounds = round;
     // The first round solves every fiber without checking first: nearly all
     // need a step then (a fiber that does not returns before its first one).
     const bool check = round > 1;
+    int rows_outside = 0, cols_outside = 0;
     const bool rows_moved =
-        project_family(true, positions_m, tolerance, steps_per_fiber, &report.fiber_steps, check);
+        project_family(true, positions_m, tolerance, steps_per_fiber, report.relaxation,
+                       &report.fiber_steps, &rows_outside, check);
     const bool cols_moved =
-        project_family(false, positions_m, tolerance, steps_per_fiber, &report.fiber_steps, check);
+        project_family(false, positions_m, tolerance, steps_per_fiber, report.relaxation,
+                       &report.fiber_steps, &cols_outside, check);
+    // Rounds 1 and 2 are not compared: the first solves every fiber unchecked.
+    const int outside = rows_outside + cols_outside;
+    if (round >= 3 && outside > outside_before) report.relaxation = kUnderRelaxation;
+    if (round >= 2) outside_before = outside;
     if (!rows_moved && !cols_moved) {  // a whole round found nothing to move
       report.converged = true;
       return report;
