@@ -105,17 +105,16 @@ double wrinkle_wavelength_m(const Lattice& lattice, const Frames& frames, int fi
   if (cols < 8) return 0.0;
   std::vector<double> offsets(std::size_t(cols - 2));
   for (std::size_t t = std::size_t(std::max(first_frame, 0)); t < frames.size(); ++t) {
-    const auto& x = frames[t];
+    const NodeView x(lattice, frames[t]);
     for (int j = 1; j + 1 < lattice.rows; ++j) {
       for (int k = 1; k + 1 < cols; ++k) {
         // The local normal from the neighbours across and along the row.
-        const Vec3 along = x[lattice.index(j, k + 1)] - x[lattice.index(j, k - 1)];
-        const Vec3 across = x[lattice.index(j + 1, k)] - x[lattice.index(j - 1, k)];
+        const Vec3 along = x.at(j, k + 1) - x.at(j, k - 1);
+        const Vec3 across = x.at(j + 1, k) - x.at(j - 1, k);
         Vec3 normal = along.cross(across);
         const double norm = normal.norm();
         if (norm > 0.0) normal /= norm;
-        const Vec3 off = x[lattice.index(j, k)] -
-                         0.5 * (x[lattice.index(j, k - 1)] + x[lattice.index(j, k + 1)]);
+        const Vec3 off = x.at(j, k) - 0.5 * (x.at(j, k - 1) + x.at(j, k + 1));
         offsets[std::size_t(k - 1)] = off.dot(normal);
       }
       const double bin = peak_bin(offsets);
@@ -146,15 +145,16 @@ double coarse_line_imprint(const Lattice& lattice, std::span<const Vec3> frame,
   for (int j : coarse_rows) on_row[std::size_t(j)] = 1;
   for (int k : coarse_cols) on_col[std::size_t(k)] = 1;
   std::vector<double> across_rows_on, across_rows_off, across_cols_on, across_cols_off;
+  const NodeView x(lattice, frame);
   for (int j = 0; j < J; ++j)
     for (int k = 0; k < K; ++k) {
-      const Vec3& p = frame[lattice.index(j, k)];
+      const Vec3& p = x.at(j, k);
       if (j > 0 && j + 1 < J)  // the column fiber bending at (j, k)
         (on_row[std::size_t(j)] ? across_rows_on : across_rows_off)
-            .push_back(turning(frame[lattice.index(j - 1, k)], p, frame[lattice.index(j + 1, k)]));
+            .push_back(turning(x.at(j - 1, k), p, x.at(j + 1, k)));
       if (k > 0 && k + 1 < K)  // the row fiber bending at (j, k)
         (on_col[std::size_t(k)] ? across_cols_on : across_cols_off)
-            .push_back(turning(frame[lattice.index(j, k - 1)], p, frame[lattice.index(j, k + 1)]));
+            .push_back(turning(x.at(j, k - 1), p, x.at(j, k + 1)));
     }
   const auto ratio = [&](std::vector<double>& on, std::vector<double>& off) {
     if (on.empty() || off.empty()) return 1.0;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/lattice.hpp"
 
 namespace flagsim::data {
 namespace {
@@ -69,9 +70,8 @@ void Pc2Writer::finish() {
 
 std::string obj_text(int rows, int cols, std::span<const Vec3> positions_m,
                      const std::string& comment) {
-  const auto at = [&](int j, int k) -> const Vec3& {
-    return positions_m[std::size_t(j) * std::size_t(cols) + std::size_t(k)];
-  };
+  const NodeView nodes(rows, cols, positions_m);
+  const auto at = [&](int j, int k) -> const Vec3& { return nodes.at(j, k); };
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "# {}\n# {} x {} nodes, m, y up\no flag\n", comment, rows,
                  cols);

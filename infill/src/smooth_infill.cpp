@@ -157,13 +157,13 @@ void SmoothInfill::register_stages(StageTimes& times) {
 void SmoothInfill::add_wrinkles(std::span<Vec3> positions_m) {
   const int J = lattice_.rows, K = lattice_.cols;
   // The surface's normal at every node, from its neighbours along both fibers.
+  const NodeView surface(lattice_, std::as_const(surface_));
+  const NodeView normals(lattice_, normals_);
   for (int j = 0; j < J; ++j)
     for (int k = 0; k < K; ++k) {
-      const Vec3 along_row = surface_[lattice_.index(j, std::min(k + 1, K - 1))] -
-                             surface_[lattice_.index(j, std::max(k - 1, 0))];
-      const Vec3 along_col = surface_[lattice_.index(std::min(j + 1, J - 1), k)] -
-                             surface_[lattice_.index(std::max(j - 1, 0), k)];
-      normals_[lattice_.index(j, k)] = along_row.cross(along_col).normalized();
+      const Vec3 along_row = surface.clamped(j, k + 1) - surface.clamped(j, k - 1);
+      const Vec3 along_col = surface.clamped(j + 1, k) - surface.clamped(j - 1, k);
+      normals.at(j, k) = along_row.cross(along_col).normalized();
     }
   std::vector<double> offset(lattice_.node_count(), 0.0);
   const auto fiber_wave = [&](std::size_t first, std::size_t stride, int segments, double rest_m) {

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "flagsim/core/lattice.hpp"
 #include "flagsim/render/flag_pattern.hpp"
 
 namespace flagsim::render {
@@ -178,7 +179,8 @@ int FrameRenderer::wire_step(const FrameView& frame) const {
     return Eigen::Vector2d(focal * d.dot(s) / depth, focal * d.dot(u) / depth);
   };
   const int rows = frame.rows, cols = frame.cols;
-  auto at = [&](int j, int k) { return frame.positions_m[std::size_t(j) * cols + std::size_t(k)]; };
+  const NodeView x(rows, cols, frame.positions_m);
+  const auto at = [&](int j, int k) -> const Vec3& { return x.at(j, k); };
   double length = 0.0;
   int links = 0;
   for (int k = 0; k + 1 < cols; ++k, ++links)
@@ -192,7 +194,8 @@ int FrameRenderer::wire_step(const FrameView& frame) const {
 void FrameRenderer::draw_cloth(const FrameView& frame) {
   const int rows = frame.rows, cols = frame.cols;
   const std::span<const Vec3> x = frame.positions_m;
-  auto at = [&](int j, int k) -> const Vec3& { return x[std::size_t(j) * cols + std::size_t(k)]; };
+  const NodeView nodes(rows, cols, x);
+  const auto at = [&](int j, int k) -> const Vec3& { return nodes.at(j, k); };
   std::vector<GLuint> indices;
   if (options_.style == Style::kWireframe) {
     glDisable(GL_LIGHTING);

@@ -7,6 +7,7 @@
 #include <functional>
 #include <numeric>
 
+#include "flagsim/core/lattice.hpp"
 #include "flagsim/data/output_reader.hpp"
 #include "process.hpp"
 #include "temp_dir.hpp"
@@ -54,31 +55,29 @@ std::unique_ptr<Run> run(const std::string& scene_text) {
 }
 
 // Out-of-plane offset of every node from the straight line between its row's ends, [J][K].
-// Flat index of node (j, k) of a lattice with `cols` columns.
-std::size_t node(int j, int k, int cols) {
-  return std::size_t(j) * std::size_t(cols) + std::size_t(k);
-}
-
-std::vector<std::vector<double>> row_offsets(const std::vector<Vec3>& x, int rows, int cols) {
+std::vector<std::vector<double>> row_offsets(const std::vector<Vec3>& positions, int rows,
+                                             int cols) {
+  const NodeView x(rows, cols, positions);
   std::vector<std::vector<double>> offsets(static_cast<std::size_t>(rows),
                                            std::vector<double>(static_cast<std::size_t>(cols)));
   for (int j = 0; j < rows; ++j) {
-    const Vec3 &a = x[node(j, 0, cols)], &b = x[node(j, cols - 1, cols)];
+    const Vec3 &a = x.at(j, 0), &b = x.at(j, cols - 1);
     for (int k = 0; k < cols; ++k)
-      offsets[j][k] = x[node(j, k, cols)].z() - (a.z() + (b.z() - a.z()) * k / (cols - 1));
+      offsets[j][k] = x.at(j, k).z() - (a.z() + (b.z() - a.z()) * k / (cols - 1));
   }
   return offsets;
 }
 
 // Dominant wrinkle wavelength along the rows, m: 2 x chord / (half-waves), the
 // half-waves counted as sign changes of the offset, median over the inner rows.
-double wavelength_m(const std::vector<Vec3>& x, int rows, int cols) {
-  const auto offsets = row_offsets(x, rows, cols);
+double wavelength_m(const std::vector<Vec3>& positions, int rows, int cols) {
+  const NodeView x(rows, cols, positions);
+  const auto offsets = row_offsets(positions, rows, cols);
   std::vector<double> lengths;
   for (int j = 1; j + 1 < rows; ++j) {
     int changes = 0;
     for (int k = 2; k + 1 < cols; ++k) changes += (offsets[j][k] > 0) != (offsets[j][k - 1] > 0);
-    const double chord = (x[node(j, cols - 1, cols)] - x[node(j, 0, cols)]).norm();
+    const double chord = (x.at(j, cols - 1) - x.at(j, 0)).norm();
     lengths.push_back(2.0 * chord / (changes + 1));
   }
   std::nth_element(lengths.begin(), lengths.begin() + long(lengths.size() / 2), lengths.end());
@@ -160,16 +159,18 @@ TEST(InfillProperties, Three_WrinkleWavelengthGrowsAsTheFiberRadiusSquared) {
 }
 
 // Bending energy per node, sum of theta^2 of its row and column turning angles.
-std::vector<double> bending_per_node(const std::vector<Vec3>& x, int rows, int cols) {
-  auto at = [&](int j, int k) { return x[node(j, k, cols)]; };
+std::vector<double> bending_per_node(const std::vector<Vec3>& positions, int rows, int cols) {
+  const NodeView x(rows, cols, positions);
+  const auto at = [&](int j, int k) -> const Vec3& { return x.at(j, k); };
   auto turn = [](const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 u = b - a, v = c - b;
     return std::atan2(u.cross(v).norm(), u.dot(v));
   };
   std::vector<double> energy(std::size_t(rows) * std::size_t(cols), 0.0);
+  const NodeView energy_at(rows, cols, energy);
   for (int j = 0; j < rows; ++j)
     for (int k = 0; k < cols; ++k) {
-      double& e = energy[node(j, k, cols)];
+      double& e = energy_at.at(j, k);
       if (k > 0 && k + 1 < cols) e += std::pow(turn(at(j, k - 1), at(j, k), at(j, k + 1)), 2);
       if (j > 0 && j + 1 < rows) e += std::pow(turn(at(j - 1, k), at(j, k), at(j + 1, k)), 2);
     }

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <span>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -84,6 +86,30 @@ TEST(Lattice, ALinkFieldHoldsOneValueForEveryLinkWhereItsLinkSays) {
       }
       EXPECT_EQ(i, mine.size());
     }
+}
+
+TEST(Lattice, ANodeViewReadsAndWritesNode_j_k_WhereTheFlatIndexKeepsIt) {
+  const Lattice lattice = Lattice::rectangle(3, 4, 1.0, 2.0, Vec3::Zero());
+  std::vector<Vec3> nodes = lattice.rest_positions();
+  const NodeView<const Vec3> read(lattice, std::span<const Vec3>(nodes));
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(&read.at(j, k), &nodes[lattice.index(j, k)]) << j << "," << k;
+      EXPECT_EQ(read.at(j, k), lattice.rest_position(j, k)) << j << "," << k;
+    }
+  // A const array gives a read-only view, a mutable one a writable view.
+  static_assert(
+      std::is_same_v<decltype(NodeView(lattice, std::as_const(nodes))), NodeView<const Vec3>>);
+  static_assert(std::is_same_v<decltype(NodeView(3, 4, nodes)), NodeView<Vec3>>);
+  NodeView write(lattice, nodes);
+  write.at(2, 1) = Vec3(7.0, 8.0, 9.0);
+  EXPECT_EQ(nodes[lattice.index(2, 1)], Vec3(7.0, 8.0, 9.0));
+  // Clamped reads repeat the edge: one past each side is the edge node.
+  EXPECT_EQ(&read.clamped(-1, 0), &read.at(0, 0));
+  EXPECT_EQ(&read.clamped(3, 4), &read.at(2, 3));
+  EXPECT_EQ(&read.clamped(1, -5), &read.at(1, 0));
+  EXPECT_EQ(read.rows(), 3);
+  EXPECT_EQ(read.cols(), 4);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 // index(j, k) = j * cols + k.
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -39,6 +40,46 @@ struct Lattice {
   /// (0,0), (0,K-1), (J-1,0), (J-1,K-1).
   std::array<std::size_t, 4> corners() const;
 };
+
+/// Per-node data of a lattice, [J*K] row-major, read by (row, column): a view,
+/// it owns nothing. NodeView<const Vec3> reads a frame, NodeView<Vec3> writes one.
+template <class T>
+class NodeView {
+ public:
+  NodeView(const Lattice& lattice, std::span<T> nodes)
+      : NodeView(lattice.rows, lattice.cols, nodes) {}
+  /// A frame read without its Lattice (a file's, a renderer's): `rows` x `cols` nodes.
+  NodeView(int rows, int cols, std::span<T> nodes) : rows_(rows), cols_(cols), nodes_(nodes) {
+    assert(rows >= 0 && cols >= 0 && nodes.size() == std::size_t(rows) * std::size_t(cols));
+  }
+  /// Node (j, k): row j (0 the top edge), column k (0 the pole edge).
+  T& at(int j, int k) const {
+    assert(j >= 0 && j < rows_ && k >= 0 && k < cols_);
+    return nodes_[std::size_t(j) * std::size_t(cols_) + std::size_t(k)];
+  }
+  /// Node (j, k) with j and k clamped into the lattice (an edge repeats itself).
+  T& clamped(int j, int k) const {
+    return at(std::clamp(j, 0, rows_ - 1), std::clamp(k, 0, cols_ - 1));
+  }
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+
+ private:
+  int rows_ = 0, cols_ = 0;
+  std::span<T> nodes_;
+};
+template <class T>
+NodeView(const Lattice&, std::span<T>) -> NodeView<T>;
+template <class T>
+NodeView(const Lattice&, std::vector<T>&) -> NodeView<T>;
+template <class T>
+NodeView(const Lattice&, const std::vector<T>&) -> NodeView<const T>;
+template <class T>
+NodeView(int, int, std::span<T>) -> NodeView<T>;
+template <class T>
+NodeView(int, int, std::vector<T>&) -> NodeView<T>;
+template <class T>
+NodeView(int, int, const std::vector<T>&) -> NodeView<const T>;
 
 /// One link between neighbour nodes: flat indices a, b (b the right or lower
 /// neighbour), its rest length, m, and where a LinkField keeps its value.
