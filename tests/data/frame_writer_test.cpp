@@ -98,30 +98,6 @@ TEST(FrameWriter, FieldsOfTheWrongSizeAreRefused) {
   EXPECT_EQ(writer.frames_written(), 0);
 }
 
-TEST(FrameWriter, XdmfPointsAtEveryFramesViews) {
-  const Lattice lattice = Lattice::rectangle(3, 4, 1, 1, Vec3::Zero());
-  const std::vector<double> times = {0.0, 0.5};
-  const std::vector<std::string> fields = {"strain", "velocity"};
-  const std::string text = xdmf_text("run.h5", lattice, times, fields);
-  EXPECT_NE(text.find("CollectionType=\"Temporal\""), std::string::npos);
-  EXPECT_NE(text.find("<Time Value=\"0.5\"/>"), std::string::npos);
-  EXPECT_NE(text.find("Dimensions=\"3 4 3\" NumberType=\"Float\" Precision=\"4\" "
-                      "Format=\"HDF\">run.h5:/xdmf/positions/1<"),
-            std::string::npos);
-  EXPECT_NE(text.find("<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">"),
-            std::string::npos);
-  EXPECT_NE(text.find("Dimensions=\"3 4\" NumberType=\"Float\" Precision=\"4\" "
-                      "Format=\"HDF\">run.h5:/xdmf/strain/0<"),
-            std::string::npos);
-  // ParaView's default reader shows 0 points for a HyperSlab geometry.
-  EXPECT_EQ(text.find("HyperSlab"), std::string::npos);
-  // Only the fields the run wrote.
-  const std::vector<std::string> strain_only = {"strain"};
-  const std::string fewer = xdmf_text("run.h5", lattice, times, strain_only);
-  EXPECT_EQ(fewer.find("velocity"), std::string::npos);
-  EXPECT_NE(fewer.find("/xdmf/strain/1"), std::string::npos);
-}
-
 TEST(FrameWriter, FieldsTheRunDidNotAskForAreNotWritten) {
   test::TempDir dir;
   const Lattice lattice = Lattice::rectangle(3, 4, 1.5, 1.0, Vec3(0, 2, 0));

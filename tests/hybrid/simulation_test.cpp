@@ -1,0 +1,145 @@
+#include "flagsim/hybrid/simulation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/core/strain.hpp"
+#include "tolerances.hpp"
+
+namespace flagsim::hybrid {
+namespace {
+
+// The default scene (9 x 13 coarse) on a 33 x 49 dense lattice, with `more` overrides.
+Scene default_at_33x49(std::vector<std::string> more = {}) {
+  more.insert(more.begin(), "flag.fine=[33,49]");
+  return parse_scene(default_scene_toml(), kDefaultSceneName, more);
+}
+
+// Largest relative stretch of a coarse link that has a free end (a link
+// between two pinned nodes is where the pole holds it).
+double coarse_link_stretch(std::span<const Vec3> coarse, const physics::ClothModel& model) {
+  double most = -1.0;
+  for_each_link(model.lattice, [&](const Link& link) {
+    if (!(model.pinned[link.a] && model.pinned[link.b]))
+      most = std::max(most, (coarse[link.b] - coarse[link.a]).norm() / link.rest_m - 1.0);
+  });
+  return most;
+}
+
+TEST(HybridSimulation, TheCoarseNodesAreThePhysicsOwnTheInfillDoesNotFeedBack) {
+  // The smooth infill takes the coarse nodes as the physics leaves them: the
+  // hybrid's /coarse/positions are, bit for bit, the coarse cloth simulated alone.
+  const Scene scene = default_at_33x49();
+  const auto hybrid = make_simulation(scene);
+  const auto alone = make_simulation(on_coarse_lattice(scene));
+  for (int frame = 0; frame < 10; ++frame) {
+    const std::span<const Vec3> coarse = hybrid->coarse_positions();
+    ASSERT_EQ(coarse.size(), 9u * 13u);
+    ASSERT_TRUE(std::equal(coarse.begin(), coarse.end(), alone->positions().begin())) << frame;
+    hybrid->advance_frame(nullptr);
+    alone->advance_frame(nullptr);
+  }
+}
+
+TEST(HybridSimulation, ThePaperInfillGetsItsCoarseNodesWithOnePercentOfSlack) {
+  // The paper solver needs every coarse link at most 99% of its rest length;
+  // the physics' own nodes are not changed by it.
+  const Scene scene = default_at_33x49({"infill.solver=\"paper\""});
+  const auto hybrid = make_simulation(scene);
+  const auto alone = make_simulation(on_coarse_lattice(scene));
+  const physics::ClothModel coarse_model = physics::make_cloth_model(on_coarse_lattice(scene));
+  for (int frame = 0; frame < 15; ++frame) {
+    hybrid->advance_frame(nullptr);
+    alone->advance_frame(nullptr);
+  }
+  // limit_stretch's Gauss-Seidel passes (at most 100) come within a few
+  // hundredths of a percent of the 99%; the physics' own links are longer.
+  const double handed = coarse_link_stretch(hybrid->coarse_positions(), coarse_model);
+  const double own = coarse_link_stretch(alone->positions(), coarse_model);
+  EXPECT_LT(handed, -0.009);
+  EXPECT_GT(own, 0.0);
+  EXPECT_FALSE(std::equal(alone->positions().begin(), alone->positions().end(),
+                          hybrid->coarse_positions().begin()));
+}
+
+TEST(HybridSimulation, NamesItsCoarseRowsAndColumnsOnTheDenseLattice) {
+  const auto hybrid = make_simulation(default_at_33x49());
+  const auto [rows, cols] = hybrid->coarse_indices();
+  EXPECT_EQ(rows, (std::vector<int>{0, 4, 8, 12, 16, 20, 24, 28, 32}));
+  EXPECT_EQ(cols, (std::vector<int>{0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40, 44, 48}));
+  // The full-lattice modes have none.
+  const auto full = make_simulation(default_at_33x49({"scene.mode=\"mass-spring\""}));
+  EXPECT_TRUE(full->coarse_indices().first.empty());
+  EXPECT_TRUE(full->coarse_positions().empty());
+  EXPECT_FALSE(full->infill_report().has_value());
+}
+
+TEST(HybridSimulation, ItsEffectsAreThePhysicsThenTheInfill) {
+  const auto hybrid = make_simulation(default_at_33x49());
+  const std::vector<std::string> effects = hybrid->effects();
+  ASSERT_FALSE(effects.empty());
+  EXPECT_EQ(effects.back(), "infill");
+  EXPECT_NE(std::find(effects.begin(), effects.end(), "wind"), effects.end());
+  const auto wrinkled = make_simulation(
+      default_at_33x49({"wrinkles.fiber_modulus=1e9", "wrinkles.fiber_radius=0.002"}));
+  EXPECT_EQ(wrinkled->effects().back(), "wrinkles");
+  const auto full = make_simulation(default_at_33x49({"scene.mode=\"mass-spring\""}));
+  const std::vector<std::string> physics_only = full->effects();
+  EXPECT_EQ(std::find(physics_only.begin(), physics_only.end(), "infill"), physics_only.end());
+}
+
+TEST(HybridSimulation, DenseVelocitiesAreFrameDifferencesAndTheEnergyIsTheirs) {
+  const Scene scene = default_at_33x49();
+  const auto hybrid = make_simulation(scene);
+  for (const Vec3& v : hybrid->velocities()) ASSERT_EQ(v, Vec3::Zero());  // frame 0 is at rest
+  EXPECT_EQ(hybrid->kinetic_energy_j(), 0.0);
+  for (int frame = 0; frame < 5; ++frame) hybrid->advance_frame(nullptr);
+  const std::vector<Vec3> before(hybrid->positions().begin(), hybrid->positions().end());
+  hybrid->advance_frame(nullptr);
+  const std::vector<double> mass_kg = physics::make_cloth_model(scene).mass_kg;
+  double energy = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const Vec3 v = (hybrid->positions()[i] - before[i]) * scene.fps;
+    ASSERT_LT((hybrid->velocities()[i] - v).norm(), test::kRoundOff) << i;
+    energy += 0.5 * mass_kg[i] * v.squaredNorm();
+  }
+  EXPECT_GT(energy, 0.0);
+  EXPECT_NEAR(hybrid->kinetic_energy_j(), energy, test::kRoundOff * energy);
+}
+
+TEST(HybridSimulation, AFrameWithinTheLimitsHasNoDivergenceAndOneOutsideSaysWhichLimit) {
+  const Scene scene = default_at_33x49();
+  const auto hybrid = make_simulation(scene);
+  hybrid->advance_frame(nullptr);
+  const StrainStats strain = link_strain(hybrid->lattice(), hybrid->positions());
+  EXPECT_LT(strain.max, 0.01);
+  EXPECT_FALSE(frame_divergence(*hybrid, scene, strain).has_value());
+  // The infill converged in this frame, so an overstretched link is the cloth's.
+  ASSERT_TRUE(hybrid->infill_report()->converged);
+  const std::optional<std::string> why =
+      frame_divergence(*hybrid, scene, StrainStats{2 * scene.limits.max_strain, 0.0});
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("limits.max_strain"), std::string::npos) << *why;
+  EXPECT_EQ(why->find("the infill failed"), std::string::npos) << *why;
+}
+
+TEST(HybridSimulation, NotesWrinklesFinerThanTheLatticeCarriesAndOnlyThose) {
+  EXPECT_FALSE(wrinkle_resolution_note(default_at_33x49()).has_value());  // no [wrinkles]
+  const std::optional<std::string> thin = wrinkle_resolution_note(
+      default_at_33x49({"wrinkles.fiber_modulus=1e9", "wrinkles.fiber_radius=0.0002"}));
+  ASSERT_TRUE(thin.has_value());
+  EXPECT_TRUE(thin->starts_with("note: [wrinkles] asks for waves of 0.0575 m")) << *thin;
+  EXPECT_NE(thin->find("33 x 49"), std::string::npos) << *thin;
+  EXPECT_NE(thin->find("210 or more columns"), std::string::npos) << *thin;
+  EXPECT_FALSE(wrinkle_resolution_note(
+                   default_at_33x49({"wrinkles.fiber_modulus=1e9", "wrinkles.fiber_radius=0.002"}))
+                   .has_value());
+}
+
+}  // namespace
+}  // namespace flagsim::hybrid
