@@ -15,6 +15,7 @@ namespace {
 
 std::vector<std::string> names(const std::vector<std::unique_ptr<ForceTerm>>& terms) {
   std::vector<std::string> out;
+  out.reserve(terms.size());
   for (const auto& term : terms) out.emplace_back(term->name());
   return out;
 }
