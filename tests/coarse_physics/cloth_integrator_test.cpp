@@ -1,11 +1,14 @@
 // What every backend behind ClothIntegrator promises alike.
+#include "flagsim/coarse_physics/cloth_integrator.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <string>
 
-#include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "scene_fixtures.hpp"
+#include "tolerances.hpp"
 
 namespace flagsim::physics {
 namespace {
@@ -41,6 +44,26 @@ TEST(Integrators, EveryBackendStartsFromTheSameState) {
     EXPECT_EQ(0, std::memcmp(physics->state().x_m.data(), start.x_m.data(),
                              start.x_m.size() * sizeof(Vec3)))
         << name;
+  }
+}
+
+TEST(Integrators, TheFactoryBuildsTheBackendTheSceneNamesAndItsEnergyIsHalfMvSquared) {
+  for (const auto& [backend, name] : kBackendNames) {
+    Scene scene = test::hanging_cloth(backend, PinSet::kTop);
+    scene.solver.substeps = 40;
+    const auto physics = make_integrator(scene);
+    EXPECT_EQ(physics->kinetic_energy(), 0.0) << name;  // it starts at rest
+    physics->advance_frame(nullptr);                    // 0.1 s of falling
+    const ClothState& state = physics->state();
+    double energy = 0.0;
+    for (std::size_t i = 0; i < state.v_m_s.size(); ++i)
+      energy += 0.5 * physics->model().mass_kg[i] * state.v_m_s[i].squaredNorm();
+    EXPECT_GT(energy, 0.0) << name;
+    EXPECT_NEAR(physics->kinetic_energy(), energy, test::kRoundOff * energy) << name;
+    // Each backend names its own solver in the summary (Bullet's iterations,
+    // implicit Euler's linear solve, XPBD's passes) or nothing.
+    const std::string summary = physics->solver_summary();
+    if (backend == Backend::kSpringDamper) EXPECT_TRUE(summary.empty()) << summary;
   }
 }
 
