@@ -3,6 +3,10 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
+// Lanes (below) are passed by value only between inlined helpers of this
+// file, never across an ABI boundary.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace flagsim::physics {
 
 Vec3 triangle_aero_force(const Vec3& x0, const Vec3& x1, const Vec3& x2,
@@ -55,12 +59,27 @@ AeroForce::AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t se
       areal_density_kg_m2_(areal_density_kg_m2),
       cloth_speed_bound_m_s_(cloth_speed_bound_m_s) {
   air_m_s_.assign(lattice_.node_count(), wind.velocity_m_s);
+  const std::size_t nodes = lattice_.node_count();
+  const std::size_t cells = std::size_t(lattice_.rows - 1) * std::size_t(lattice_.cols - 1);
+  for (int axis = 0; axis < 3; ++axis) {
+    work_.x[axis].resize(nodes);
+    work_.v[axis].resize(nodes);
+    work_.air[axis].resize(nodes);
+    work_.f[axis].resize(nodes);
+    work_.upper[axis].resize(cells);
+    work_.lower[axis].resize(cells);
+  }
   begin_frame(0.0, lattice_.rest_positions());
+  for (std::size_t i = 0; i < nodes; ++i)  // the steady wind's, kept while no frame changes it
+    for (int axis = 0; axis < 3; ++axis) work_.air[axis][i] = air_m_s_[i][axis];
 }
 
 void AeroForce::begin_frame(double time_s, std::span<const Vec3> x_m) {
   if (field_.steady()) return;  // the mean wind everywhere, set once
-  for (std::size_t i = 0; i < air_m_s_.size(); ++i) air_m_s_[i] = field_.velocity(x_m[i], time_s);
+  for (std::size_t i = 0; i < air_m_s_.size(); ++i) {
+    air_m_s_[i] = field_.velocity(x_m[i], time_s);
+    for (int axis = 0; axis < 3; ++axis) work_.air[axis][i] = air_m_s_[i][axis];
+  }
 }
 
 template <typename Visit>
@@ -80,16 +99,186 @@ namespace {
 constexpr double kThird = 1.0 / 3.0;  // multiply: Eigen's "/ 3.0" is three divisions
 }  // namespace
 
+namespace {
+
+// Four triangles side by side (GCC's vector extension: two SSE2 registers on
+// any x86-64, one AVX register in the AVX2 clone, picked at run time).
+// Element-wise IEEE operations only, no fused multiply-add: the same bits as
+// triangle_aero_force's scalar operations, in the same order.
+constexpr int kLanes = 4;
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
+
+// Always inlined: a helper left out of line would run the default target's
+// code, two SSE2 halves, in the AVX2 clone too.
+[[gnu::always_inline]] inline Lanes load(const double* p) {
+  Lanes v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline void store(double* p, Lanes v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+
+// `kLanes` consecutive values of one coordinate, from node `i` on.
+struct Lanes3 {
+  Lanes x, y, z;
+};
+// One coordinate of u = ((air0 + air1) + air2 - ((v0 + v1) + v2)) / 3.
+[[gnu::always_inline]] inline Lanes mean_relative(const std::vector<double>& air,
+                                                  const std::vector<double>& v, std::size_t n0,
+                                                  std::size_t n1, std::size_t n2) {
+  return (Lanes{} + kThird) *
+         (((load(air.data() + n0) + load(air.data() + n1)) + load(air.data() + n2)) -
+          ((load(v.data() + n0) + load(v.data() + n1)) + load(v.data() + n2)));
+}
+// One coordinate of the edge x[to] - x[from].
+[[gnu::always_inline]] inline Lanes edge(const std::vector<double>& x, std::size_t from,
+                                         std::size_t to) {
+  return load(x.data() + to) - load(x.data() + from);
+}
+
+// triangle_aero_force's arithmetic on lanes, times 1/3 (a node's share), for
+// the triangles (n0 + l, n1 + l, n2 + l) of lanes l; the air's and the nodes'
+// velocities summed in the triangle's order, as Eigen's (p + q + r): (p + q) + r.
+// Each value is loaded where it is first used, so that few lanes are live at once.
+[[gnu::always_inline]] inline Lanes3 third_of_force(const std::vector<double> (&x)[3],
+                                                    const std::vector<double> (&air)[3],
+                                                    const std::vector<double> (&v)[3],
+                                                    std::size_t n0, std::size_t n1, std::size_t n2,
+                                                    const Wind& wind) {
+  const Lanes zero = Lanes{} + 0.0, one = Lanes{} + 1.0, third = Lanes{} + kThird;
+  const Lanes3 u = {mean_relative(air[0], v[0], n0, n1, n2),
+                    mean_relative(air[1], v[1], n0, n1, n2),
+                    mean_relative(air[2], v[2], n0, n1, n2)};
+  const Lanes3 e1 = {edge(x[0], n0, n1), edge(x[1], n0, n1), edge(x[2], n0, n1)};
+  const Lanes3 e2 = {edge(x[0], n0, n2), edge(x[1], n0, n2), edge(x[2], n0, n2)};
+  const Lanes3 c = {e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                    e1.x * e2.y - e1.y * e2.x};
+  const Lanes c_norm2 = (c.x * c.x + c.y * c.y) + c.z * c.z;
+  const Lanes speed2 = (u.x * u.x + u.y * u.y) + u.z * u.z;
+  const auto degenerate = (c_norm2 == zero) | (speed2 == zero);
+  const Lanes u_dot_c = (u.x * c.x + u.y * c.y) + u.z * c.z;
+  const Lanes product = c_norm2 * speed2;
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(product[l]);
+  const Lanes safe_r = degenerate ? one : r;
+  const Lanes inv_c_norm2 = one / (degenerate ? one : c_norm2);
+  const Lanes quarter_rho = zero + 0.25 * wind.air_density_kg_m3;
+  const Lanes abs_u_dot_c = u_dot_c < zero ? -u_dot_c : u_dot_c;
+  const Lanes along_c = quarter_rho * u_dot_c * inv_c_norm2 *
+                        ((zero + wind.drag) * abs_u_dot_c + (zero + wind.lift) * r);
+  const Lanes along_u = quarter_rho * (zero + wind.lift) * u_dot_c * u_dot_c / safe_r;
+  const Lanes3 f = {along_c * c.x - along_u * u.x, along_c * c.y - along_u * u.y,
+                    along_c * c.z - along_u * u.z};
+  return {degenerate ? zero : third * f.x, degenerate ? zero : third * f.y,
+          degenerate ? zero : third * f.z};
+}
+
+}  // namespace
+
+__attribute__((target_clones("avx2", "default"))) void AeroForce::row_thirds(int j) const {
+  const std::size_t K = std::size_t(lattice_.cols), cells = K - 1;
+  const std::size_t top = std::size_t(j) * K, bottom = top + K, out = std::size_t(j) * cells;
+  std::size_t k = 0;
+  for (; k + kLanes <= cells; k += kLanes) {
+    // Nodes 00 (top + k), 01, 10 (bottom + k), 11 of kLanes consecutive cells.
+    const std::size_t n00 = top + k, n01 = n00 + 1, n10 = bottom + k, n11 = n10 + 1;
+    const Lanes3 up = third_of_force(work_.x, work_.air, work_.v, n00, n01, n10, wind_);
+    const Lanes3 lo = third_of_force(work_.x, work_.air, work_.v, n01, n11, n10, wind_);
+    store(work_.upper[0].data() + out + k, up.x);
+    store(work_.upper[1].data() + out + k, up.y);
+    store(work_.upper[2].data() + out + k, up.z);
+    store(work_.lower[0].data() + out + k, lo.x);
+    store(work_.lower[1].data() + out + k, lo.y);
+    store(work_.lower[2].data() + out + k, lo.z);
+  }
+  for (; k < cells; ++k) {  // the row's last cells, one at a time, the same arithmetic
+    const auto node = [](const std::vector<double>(&a)[3], std::size_t i) {
+      return Vec3(a[0][i], a[1][i], a[2][i]);
+    };
+    const std::size_t n00 = top + k, n01 = n00 + 1, n10 = bottom + k, n11 = n10 + 1;
+    const auto third = [&](std::size_t a, std::size_t b, std::size_t c) {
+      const Vec3 u = kThird * ((node(work_.air, a) + node(work_.air, b) + node(work_.air, c)) -
+                               (node(work_.v, a) + node(work_.v, b) + node(work_.v, c)));
+      return Vec3(kThird * triangle_aero_force(node(work_.x, a), node(work_.x, b), node(work_.x, c),
+                                               u, wind_));
+    };
+    const Vec3 up = third(n00, n01, n10), lo = third(n01, n11, n10);
+    for (int axis = 0; axis < 3; ++axis) {
+      work_.upper[axis][out + k] = up[axis];
+      work_.lower[axis][out + k] = lo[axis];
+    }
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void AeroForce::gather_thirds() const {
+  // Node (j, k) gets its triangles' thirds in the order the cells' loop
+  // (row-major, upper then lower) would add them: the lower triangle of cell
+  // (j-1, k-1), both of (j-1, k), both of (j, k-1), the upper of (j, k).
+  const int J = lattice_.rows, K = lattice_.cols;
+  const std::size_t cells = std::size_t(K - 1);
+  for (int axis = 0; axis < 3; ++axis) {
+    double* const f = work_.f[axis].data();
+    const double* const upper = work_.upper[axis].data();
+    const double* const lower = work_.lower[axis].data();
+    const auto edge_node = [&](int j, int k) {
+      double& sum = f[std::size_t(j) * std::size_t(K) + std::size_t(k)];
+      const auto cell = [&](int cj, int ck) { return std::size_t(cj) * cells + std::size_t(ck); };
+      const bool up = j > 0, left = k > 0, down = j + 1 < J, right = k + 1 < K;
+      if (up && left) sum += lower[cell(j - 1, k - 1)];
+      if (up && right) {
+        sum += upper[cell(j - 1, k)];
+        sum += lower[cell(j - 1, k)];
+      }
+      if (down && left) {
+        sum += upper[cell(j, k - 1)];
+        sum += lower[cell(j, k - 1)];
+      }
+      if (down && right) sum += upper[cell(j, k)];
+    };
+    for (int j = 0; j < J; ++j) {
+      if (j == 0 || j + 1 == J) {
+        for (int k = 0; k < K; ++k) edge_node(j, k);
+        continue;
+      }
+      edge_node(j, 0);
+      // Interior nodes k = 1 .. K-2, kLanes at a time: all six triangles.
+      double* const row = f + std::size_t(j) * std::size_t(K);
+      const double* const above_upper = upper + std::size_t(j - 1) * cells;
+      const double* const above_lower = lower + std::size_t(j - 1) * cells;
+      const double* const here_upper = upper + std::size_t(j) * cells;
+      const double* const here_lower = lower + std::size_t(j) * cells;
+      int k = 1;
+      for (; k + kLanes <= K - 1; k += kLanes) {
+        const std::size_t c = std::size_t(k);
+        Lanes sum = load(row + c);
+        sum = sum + load(above_lower + c - 1);
+        sum = sum + load(above_upper + c);
+        sum = sum + load(above_lower + c);
+        sum = sum + load(here_upper + c - 1);
+        sum = sum + load(here_lower + c - 1);
+        sum = sum + load(here_upper + c);
+        store(row + c, sum);
+      }
+      for (; k < K - 1; ++k) edge_node(j, k);
+      edge_node(j, K - 1);
+    }
+  }
+}
+
 void AeroForce::add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                            std::span<Vec3> forces_n) const {
-  for_each_triangle([&](std::size_t a, std::size_t b, std::size_t c) {
-    const Vec3 u =
-        kThird * ((air_m_s_[a] + air_m_s_[b] + air_m_s_[c]) - (v_m_s[a] + v_m_s[b] + v_m_s[c]));
-    const Vec3 third = kThird * triangle_aero_force(x_m[a], x_m[b], x_m[c], u, wind_);
-    forces_n[a] += third;
-    forces_n[b] += third;
-    forces_n[c] += third;
-  });
+  const int J = lattice_.rows;
+  for (std::size_t i = 0; i < x_m.size(); ++i)
+    for (int axis = 0; axis < 3; ++axis) {
+      work_.x[axis][i] = x_m[i][axis];
+      work_.v[axis][i] = v_m_s[i][axis];
+      work_.f[axis][i] = forces_n[i][axis];
+    }
+  for (int j = 0; j + 1 < J; ++j) row_thirds(j);
+  gather_thirds();
+  for (std::size_t i = 0; i < forces_n.size(); ++i)
+    forces_n[i] = Vec3(work_.f[0][i], work_.f[1][i], work_.f[2][i]);
 }
 
 void AeroForce::linearize(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,

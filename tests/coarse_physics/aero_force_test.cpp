@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "finite_difference.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
@@ -80,6 +82,45 @@ TEST(AeroForce, WholeFlatFlagFacingWindAndMovingWithIt) {
   std::fill(f.begin(), f.end(), Vec3::Zero());
   aero.add_forces(x, v, f);
   for (const Vec3& fi : f) EXPECT_EQ(fi.norm(), 0.0);
+}
+
+TEST(AeroForce, TheLatticeForceIsEveryTriangleThirdAddedInTheTriangleLoopsOrderToTheBit) {
+  // add_forces computes four triangles side by side and each node sums its
+  // six thirds; a row of 10 cells exercises the lanes and the scalar tail, a
+  // degenerate (collapsed) triangle and nodes moving with the air the zero
+  // cases. Reference: one triangle at a time, as the cells' loop adds them.
+  Scene scene = test::small_cloth(5, 11);
+  const ClothModel model = make_cloth_model(scene);
+  Wind wind = air(1.2, 0.7);
+  wind.velocity_m_s = Vec3(9, 1, 2);
+  const AeroForce aero(model, wind, 0, scene.flag.areal_density_kg_m2, 0.0);
+  const Lattice& lattice = model.lattice;
+  std::vector<Vec3> x = lattice.rest_positions(), v(x.size()), f(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double s = double(i);
+    x[i] += 0.05 * Vec3(std::sin(1.3 * s), std::cos(0.7 * s), std::sin(2.1 * s + 0.4));
+    v[i] = Vec3(std::cos(0.9 * s), 0.5 * std::sin(1.7 * s), 3.0 * std::cos(0.3 * s));
+    f[i] = Vec3(0.1 * s, -0.2, 1e-3 * s);  // what the terms before it left there
+  }
+  x[lattice.index(2, 4)] = x[lattice.index(2, 3)];  // cell (2, 3)'s upper triangle collapses
+  v[lattice.index(4, 10)] = wind.velocity_m_s;
+  std::vector<Vec3> expected = f;
+  for (int j = 0; j + 1 < lattice.rows; ++j)
+    for (int k = 0; k + 1 < lattice.cols; ++k) {
+      const std::size_t n00 = lattice.index(j, k), n01 = n00 + 1, n10 = lattice.index(j + 1, k),
+                        n11 = n10 + 1;
+      for (const auto& [a, b, c] :
+           {std::array<std::size_t, 3>{n00, n01, n10}, std::array<std::size_t, 3>{n01, n11, n10}}) {
+        const Vec3 u = (1.0 / 3.0) * ((wind.velocity_m_s + wind.velocity_m_s + wind.velocity_m_s) -
+                                      (v[a] + v[b] + v[c]));
+        const Vec3 third = (1.0 / 3.0) * triangle_aero_force(x[a], x[b], x[c], u, wind);
+        expected[a] += third;
+        expected[b] += third;
+        expected[c] += third;
+      }
+    }
+  aero.add_forces(x, v, f);
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_EQ(f[i], expected[i]) << i;
 }
 
 TEST(AeroForce, VelocityJacobianOfOneTriangleMatchesFiniteDifferences) {

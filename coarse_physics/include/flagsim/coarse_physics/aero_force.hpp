@@ -19,6 +19,15 @@
 // sampled at the nodes once per output frame (begin_frame) and averaged over
 // each triangle: gusts last seconds and turbulent eddies pass a node in about
 // length_scale / |U|, both far longer than a substep.
+//
+// Speed: add_forces runs every substep of every backend (the wind was the
+// largest stage of the explicit and XPBD references and half of the hybrid's
+// coarse physics). The nodes are copied into one array per coordinate, each
+// lattice row's triangles are computed four at a time side by side (vector
+// lanes, two per cell), and each node then adds the thirds of its six
+// triangles in the order the triangle loop would: every operation is the one
+// triangle_aero_force makes, in the same order, so the forces are the same
+// bits as one triangle at a time (the default scene's frames are identical).
 #include <cstdint>
 #include <vector>
 
@@ -66,10 +75,23 @@ class AeroForce final : public ForceTerm {
   template <typename Visit>
   void for_each_triangle(Visit&& visit) const;
 
+  /// Positions, node velocities, air velocities and the forces being summed,
+  /// split into x, y, z arrays ([J*K] each); each triangle's third of its
+  /// force, [(J-1)(K-1)] per coordinate, for the upper (00, 01, 10) and lower
+  /// (01, 11, 10) triangle of a cell.
+  struct Workspace {
+    std::vector<double> x[3], v[3], air[3], f[3], upper[3], lower[3];
+  };
+  /// One lattice row of cells (j, k) .. (j, K-2): their triangles' thirds.
+  void row_thirds(int j) const;
+  /// Every node's triangles' thirds added to work_.f, in the triangle loop's order.
+  void gather_thirds() const;
+
   const Lattice& lattice_;
   Wind wind_;
   WindField field_;
   std::vector<Vec3> air_m_s_;  ///< [J*K] air velocity at the nodes this frame
+  mutable Workspace work_;     ///< add_forces' arrays (no allocation per substep)
   std::vector<Mat3> damping_;  ///< [2 (J-1)(K-1)] C_t at the last linearization, N s/m
   double areal_density_kg_m2_;
   double cloth_speed_bound_m_s_;
