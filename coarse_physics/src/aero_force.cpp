@@ -3,6 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
+#include "flagsim/core/lanes.hpp"
+
 // Lanes (below) are passed by value only between inlined helpers of this
 // file, never across an ABI boundary.
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -101,23 +103,12 @@ constexpr double kThird = 1.0 / 3.0;  // multiply: Eigen's "/ 3.0" is three divi
 
 namespace {
 
-// Four triangles side by side (GCC's vector extension: two SSE2 registers on
-// any x86-64, one AVX register in the AVX2 clone, picked at run time).
-// Element-wise IEEE operations only, no fused multiply-add: the same bits as
+// Four triangles side by side (core/lanes.hpp): the same bits as
 // triangle_aero_force's scalar operations, in the same order.
-constexpr int kLanes = 4;
-using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
-
-// Always inlined: a helper left out of line would run the default target's
-// code, two SSE2 halves, in the AVX2 clone too.
-[[gnu::always_inline]] inline Lanes load(const double* p) {
-  Lanes v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline void store(double* p, Lanes v) {
-  __builtin_memcpy(p, &v, sizeof v);
-}
+using lanes::Lanes;
+using lanes::load;
+using lanes::store;
+constexpr int kLanes = lanes::kWidth;
 
 // `kLanes` consecutive values of one coordinate, from node `i` on.
 struct Lanes3 {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "flagsim/core/lanes.hpp"
 #include "flagsim/core/stop_request.hpp"
 
 // Lanes (below) are passed by value only between inlined helpers of this
@@ -49,24 +50,12 @@ void FiberProjection::set_uniform_band(double band) {
   bands_.fill(LinkBand{1.0 - band, 1.0 + band});
 }
 
-// The lanes as one vector of doubles (GCC's vector extension: two SSE2
-// registers on any x86-64, one AVX register in the AVX2 clone, picked at run
-// time). Element-wise IEEE operations only, no fused multiply-add: the same
-// bits on either path.
-using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
-static_assert(sizeof(Lanes) == kLanes * sizeof(double));
-
-Lanes load(const double* p) {
-  Lanes v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-void store(double* p, Lanes v) {
-  __builtin_memcpy(p, &v, sizeof v);
-}
-Lanes splat(double value) {
-  return Lanes{} + value;
-}
+// The lanes as one vector of doubles (core/lanes.hpp).
+using lanes::Lanes;
+using lanes::load;
+using lanes::splat;
+using lanes::store;
+static_assert(kLanes == lanes::kWidth);
 
 __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lanes(
     int links, double rest_m, double tolerance, int steps, double relaxation, int* steps_made) {

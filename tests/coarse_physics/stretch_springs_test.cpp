@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
+#include <vector>
 
 #include "finite_difference.hpp"
 #include "scene_fixtures.hpp"
@@ -33,6 +35,35 @@ TEST(StretchSprings, NoForceAtRestAndBalancedTotal) {
   Vec3 total = Vec3::Zero();
   for (const Vec3& fi : f) total += fi;
   EXPECT_LT(total.norm(), 1e-9);  // internal forces: Newton's third law
+}
+
+TEST(StretchSprings, TheForceIsEveryLinksAddedInTheLinkLoopsOrderToTheBit) {
+  // add_forces computes four links side by side and each node sums its links'
+  // forces; rows of 11 nodes exercise full and partial lane groups, the border
+  // links their edge factor, a zero-length link the no-direction case.
+  // Reference: one link at a time in for_each_link's order.
+  const Scene scene = test::small_cloth(6, 11);
+  const ClothModel model = make_cloth_model(scene);
+  const StretchSprings springs(model);
+  const Lattice& lattice = model.lattice;
+  std::vector<Vec3> x = lattice.rest_positions(), f(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double s = double(i);
+    x[i] += 0.03 * Vec3(std::sin(1.1 * s), std::cos(0.6 * s), std::sin(1.9 * s + 0.2));
+    f[i] = Vec3(0.01 * s, -0.3, 2e-3 * s);  // what the terms before it left there
+  }
+  x[lattice.index(3, 5)] = x[lattice.index(3, 4)];  // a row link of zero length
+  std::vector<Vec3> expected = f;
+  for (const LinkFamily& family : model.links)
+    for_each_link(model, family, [&](std::size_t a, std::size_t b, double k, double rest) {
+      const Vec3 d = x[b] - x[a];
+      const double length = d.norm();
+      const Vec3 force = (length > 0.0 ? k * (length - rest) / length : 0.0) * d;
+      expected[a] += force;
+      expected[b] -= force;
+    });
+  springs.add_forces(x, {}, f);
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_EQ(f[i], expected[i]) << i;
 }
 
 TEST(StretchSprings, HessianIsMinusForceJacobian) {

@@ -7,6 +7,14 @@
 //   d^2E/dx_a dx_b = -H.
 // A compressed link (l < S) has a negative transverse part (it buckles);
 // Definiteness::kProjected drops it.
+//
+// Speed: add_forces runs every substep (the largest stage of the explicit
+// reference). Each family's link forces are computed four links at a time
+// along the lattice rows (core/lanes.hpp) into an array by the link's first
+// node, and each node then adds its links' forces family by family, the link
+// that ends at it before the one that starts at it: the order of the link
+// loop, so the forces are the same bits as one link at a time (a test checks).
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +42,22 @@ class StretchSprings final : public ForceTerm {
   };
   std::vector<Link> links_;    ///< every link of every family, in for_each_link order
   std::vector<Mat3> hessian_;  ///< [links] H at the last linearization, N/m
+
+  /// The positions split into x, y, z arrays and the forces being summed,
+  /// [J*K] each, padded past the end (a lane may read a node beyond the
+  /// last, and discards it); each family's link forces on its first node a,
+  /// [pad + J*K] per coordinate, link (a, a + offset) at pad + a, 0 where no
+  /// link starts (so that a node adds 0 for a link it does not have).
+  struct Workspace {
+    std::size_t pad = 0;
+    std::vector<double> x[3], f[3];
+    std::array<std::vector<double>, 3> link[4];
+  };
+  /// One family's link forces, on their first nodes.
+  void family_forces(int family) const;
+  /// Every node's link forces added to work_.f, in the link loop's order.
+  void sum_links() const;
+  mutable Workspace work_;
 };
 
 }  // namespace flagsim::physics

@@ -1,0 +1,38 @@
+#pragma once
+// Four doubles side by side, for the loops that compute many independent
+// values with the same arithmetic (fibers, triangles, links): GCC's vector
+// extension, two SSE2 registers on any x86-64, one AVX register in a function
+// cloned for AVX2 (`__attribute__((target_clones("avx2", "default")))`),
+// picked at run time. Element-wise IEEE operations only, no fused
+// multiply-add: the same bits on either path, and the same bits as the same
+// operations on one double at a time.
+//
+// The helpers are always inlined: left out of line, one would run the default
+// target's code (two SSE2 halves) inside an AVX2 clone, and pass its vectors
+// through memory. A source using them ignores -Wpsabi (lanes are passed by
+// value only between inlined helpers, never across an ABI boundary).
+namespace flagsim::lanes {
+
+inline constexpr int kWidth = 4;
+using Lanes = double __attribute__((vector_size(kWidth * sizeof(double))));
+static_assert(sizeof(Lanes) == kWidth * sizeof(double));
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+/// kWidth doubles from `p` (any alignment).
+[[gnu::always_inline]] inline Lanes load(const double* p) {
+  Lanes v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+/// kWidth doubles to `p` (any alignment).
+[[gnu::always_inline]] inline void store(double* p, Lanes v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+/// `value` in every lane.
+[[gnu::always_inline]] inline Lanes splat(double value) {
+  return Lanes{} + value;
+}
+#pragma GCC diagnostic pop
+
+}  // namespace flagsim::lanes
