@@ -2,10 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "flagsim/coarse_physics/bending_springs.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/force_terms.hpp"
+#include "flagsim/core/lanes.hpp"
 #include "flagsim/core/stop_request.hpp"
+
+// Lanes are passed by value only between inlined helpers (core/lanes.hpp).
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace flagsim::physics {
 
@@ -108,6 +114,64 @@ void Xpbd::step(double dt_s, StageTimes* times) {
   state_.time_s = next_time;
 }
 
+__attribute__((target_clones("avx2", "default"))) void Xpbd::project_links(std::size_t g,
+                                                                           double inverse_h2) {
+  using lanes::Lanes;
+  using lanes::splat;
+  constexpr int kLanes = lanes::kWidth;
+  std::vector<Vec3>& p = predicted_;
+  const std::vector<double>& w = inverse_mass_;
+  const std::vector<Link>& group = link_groups_[g];
+  std::vector<double>& lambda = link_lambda_[g];
+  // C = |x_b - x_a| - S, dlambda = (-C - alpha lambda) / (w_a + w_b + alpha),
+  // x_a -= w_a dlambda n, x_b += w_b dlambda n (XPBD, Macklin et al. 2016, eq. 18).
+  const auto project_one = [&](std::size_t l) {
+    const Link& link = group[l];
+    const Vec3 d = p[link.b] - p[link.a];
+    const double length = d.norm();
+    if (length == 0.0) return;  // no direction to correct along
+    const double alpha = link.compliance * inverse_h2;
+    const double w_a = w[link.a], w_b = w[link.b];
+    const double dlambda = (-(length - link.rest) - alpha * lambda[l]) / (w_a + w_b + alpha);
+    lambda[l] += dlambda;
+    const Vec3 step = (dlambda / length) * d;
+    p[link.a] -= w_a * step;
+    p[link.b] += w_b * step;
+  };
+  std::size_t l = 0;
+  for (; l + kLanes <= group.size(); l += kLanes) {
+    Lanes ax, ay, az, bx, by, bz, w_a, w_b, rest, compliance, old_lambda;
+    for (int i = 0; i < kLanes; ++i) {
+      const Link& link = group[l + std::size_t(i)];
+      const Vec3 &a = p[link.a], &b = p[link.b];
+      ax[i] = a.x(), ay[i] = a.y(), az[i] = a.z();
+      bx[i] = b.x(), by[i] = b.y(), bz[i] = b.z();
+      w_a[i] = w[link.a], w_b[i] = w[link.b];
+      rest[i] = link.rest, compliance[i] = link.compliance;
+      old_lambda[i] = lambda[l + std::size_t(i)];
+    }
+    const Lanes dx = bx - ax, dy = by - ay, dz = bz - az;
+    const Lanes length2 = (dx * dx + dy * dy) + dz * dz;
+    Lanes length;
+    for (int i = 0; i < kLanes; ++i) length[i] = std::sqrt(length2[i]);
+    const auto moves = length != splat(0.0);
+    const Lanes safe_length = moves ? length : splat(1.0);
+    const Lanes alpha = compliance * splat(inverse_h2);
+    const Lanes dlambda = (-(length - rest) - alpha * old_lambda) / ((w_a + w_b) + alpha);
+    const Lanes scale = dlambda / safe_length;
+    const Lanes sx = scale * dx, sy = scale * dy, sz = scale * dz;
+    const Lanes new_lambda = old_lambda + dlambda;
+    for (int i = 0; i < kLanes; ++i) {
+      if (!moves[i]) continue;
+      const Link& link = group[l + std::size_t(i)];
+      lambda[l + std::size_t(i)] = new_lambda[i];
+      p[link.a] = Vec3(ax[i] - w_a[i] * sx[i], ay[i] - w_a[i] * sy[i], az[i] - w_a[i] * sz[i]);
+      p[link.b] = Vec3(bx[i] + w_b[i] * sx[i], by[i] + w_b[i] * sy[i], bz[i] + w_b[i] * sz[i]);
+    }
+  }
+  for (; l < group.size(); ++l) project_one(l);
+}
+
 void Xpbd::project(double dt_s) {
   const double inverse_h2 = 1.0 / (dt_s * dt_s);
   std::vector<Vec3>& p = predicted_;
@@ -115,23 +179,7 @@ void Xpbd::project(double dt_s) {
   for (auto& lambda : link_lambda_) std::fill(lambda.begin(), lambda.end(), 0.0);
   for (auto& lambda : bending_lambda_) std::fill(lambda.begin(), lambda.end(), Vec3::Zero());
   for (int iteration = 0; iteration < iterations_; ++iteration) {
-    for (std::size_t g = 0; g < link_groups_.size(); ++g) {
-      const std::vector<Link>& group = link_groups_[g];
-      std::vector<double>& lambda = link_lambda_[g];
-      for (std::size_t l = 0; l < group.size(); ++l) {
-        const Link& link = group[l];
-        const Vec3 d = p[link.b] - p[link.a];
-        const double length = d.norm();
-        if (length == 0.0) continue;  // no direction to correct along
-        const double alpha = link.compliance * inverse_h2;
-        const double w_a = w[link.a], w_b = w[link.b];
-        const double dlambda = (-(length - link.rest) - alpha * lambda[l]) / (w_a + w_b + alpha);
-        lambda[l] += dlambda;
-        const Vec3 step = (dlambda / length) * d;
-        p[link.a] -= w_a * step;
-        p[link.b] += w_b * step;
-      }
-    }
+    for (std::size_t g = 0; g < link_groups_.size(); ++g) project_links(g, inverse_h2);
     for (std::size_t g = 0; g < bending_groups_.size(); ++g) {
       const std::vector<Triple>& group = bending_groups_[g];
       std::vector<Vec3>& lambda = bending_lambda_[g];

@@ -70,6 +70,10 @@ class Xpbd final : public ClothIntegrator {
  private:
   void step(double dt_s, StageTimes* times);
   void project(double dt_s);
+  /// One pass over the links of colour group `g` (they share no node, so
+  /// kLanes of them are projected side by side with the same bits as one at
+  /// a time); alpha = compliance * inverse_h2.
+  void project_links(std::size_t g, double inverse_h2);
 
   ClothModel model_;
   PinMotion pins_;
