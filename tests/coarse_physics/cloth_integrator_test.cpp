@@ -63,7 +63,9 @@ TEST(Integrators, TheFactoryBuildsTheBackendTheSceneNamesAndItsEnergyIsHalfMvSqu
     // Each backend names its own solver in the summary (Bullet's iterations,
     // implicit Euler's linear solve, XPBD's passes) or nothing.
     const std::string summary = physics->solver_summary();
-    if (backend == Backend::kSpringDamper) EXPECT_TRUE(summary.empty()) << summary;
+    if (backend == Backend::kSpringDamper) {
+      EXPECT_TRUE(summary.empty()) << summary;
+    }
   }
 }
 

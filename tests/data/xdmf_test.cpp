@@ -69,9 +69,10 @@ TEST(Xdmf, EachFramesViewReadsThatFrameOfItsField) {
     std::vector<float> values(count, -1.0f);
     h5::Handle set = h5::dataset(H5Dopen2(file.get(), path.c_str(), H5P_DEFAULT));
     EXPECT_TRUE(set.valid()) << path;
-    if (set.valid())
+    if (set.valid()) {
       EXPECT_GE(H5Dread(set.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
                 0);
+    }
     return values;
   };
   for (std::size_t t = 0; t < kFrames; ++t) {
