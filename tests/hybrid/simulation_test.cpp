@@ -33,10 +33,11 @@ double coarse_link_stretch(std::span<const Vec3> coarse, const physics::ClothMod
 
 TEST(HybridSimulation, TheCoarseNodesAreThePhysicsOwnTheInfillDoesNotFeedBack) {
   // The smooth infill takes the coarse nodes as the physics leaves them: the
-  // hybrid's /coarse/positions are, bit for bit, the coarse cloth simulated alone.
+  // hybrid's /coarse/positions are, bit for bit, the coarse cloth simulated
+  // alone (the same scene on flag.coarse, as a full-lattice mass-spring run).
   const Scene scene = default_at_33x49();
   const auto hybrid = make_simulation(scene);
-  const auto alone = make_simulation(on_coarse_lattice(scene));
+  const auto alone = make_simulation(in_mode(on_coarse_lattice(scene), Mode::kMassSpring));
   for (int frame = 0; frame < 10; ++frame) {
     const std::span<const Vec3> coarse = hybrid->coarse_positions();
     ASSERT_EQ(coarse.size(), 9u * 13u);
@@ -51,7 +52,7 @@ TEST(HybridSimulation, ThePaperInfillGetsItsCoarseNodesWithOnePercentOfSlack) {
   // the physics' own nodes are not changed by it.
   const Scene scene = default_at_33x49({"infill.solver=\"paper\""});
   const auto hybrid = make_simulation(scene);
-  const auto alone = make_simulation(on_coarse_lattice(scene));
+  const auto alone = make_simulation(in_mode(on_coarse_lattice(scene), Mode::kMassSpring));
   const physics::ClothModel coarse_model = physics::make_cloth_model(on_coarse_lattice(scene));
   for (int frame = 0; frame < 15; ++frame) {
     hybrid->advance_frame(nullptr);
