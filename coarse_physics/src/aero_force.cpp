@@ -71,17 +71,14 @@ AeroForce::AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t se
     work_.upper[axis].resize(cells);
     work_.lower[axis].resize(cells);
   }
+  lanes::split(air_m_s_, work_.air);  // the steady wind's, kept while no frame changes it
   begin_frame(0.0, lattice_.rest_positions());
-  for (std::size_t i = 0; i < nodes; ++i)  // the steady wind's, kept while no frame changes it
-    for (int axis = 0; axis < 3; ++axis) work_.air[axis][i] = air_m_s_[i][axis];
 }
 
 void AeroForce::begin_frame(double time_s, std::span<const Vec3> x_m) {
   if (field_.steady()) return;  // the mean wind everywhere, set once
-  for (std::size_t i = 0; i < air_m_s_.size(); ++i) {
-    air_m_s_[i] = field_.velocity(x_m[i], time_s);
-    for (int axis = 0; axis < 3; ++axis) work_.air[axis][i] = air_m_s_[i][axis];
-  }
+  for (std::size_t i = 0; i < air_m_s_.size(); ++i) air_m_s_[i] = field_.velocity(x_m[i], time_s);
+  lanes::split(air_m_s_, work_.air);
 }
 
 template <typename Visit>
@@ -107,6 +104,7 @@ namespace {
 // triangle_aero_force's scalar operations, in the same order.
 using lanes::Lanes;
 using lanes::load;
+using lanes::splat;
 using lanes::store;
 constexpr int kLanes = lanes::kWidth;
 
@@ -118,7 +116,7 @@ struct Lanes3 {
 [[gnu::always_inline]] inline Lanes mean_relative(const std::vector<double>& air,
                                                   const std::vector<double>& v, std::size_t n0,
                                                   std::size_t n1, std::size_t n2) {
-  return (Lanes{} + kThird) *
+  return splat(kThird) *
          (((load(air.data() + n0) + load(air.data() + n1)) + load(air.data() + n2)) -
           ((load(v.data() + n0) + load(v.data() + n1)) + load(v.data() + n2)));
 }
@@ -137,7 +135,7 @@ struct Lanes3 {
                                                     const std::vector<double> (&v)[3],
                                                     std::size_t n0, std::size_t n1, std::size_t n2,
                                                     const Wind& wind) {
-  const Lanes zero = Lanes{} + 0.0, one = Lanes{} + 1.0, third = Lanes{} + kThird;
+  const Lanes zero = splat(0.0), one = splat(1.0), third = splat(kThird);
   const Lanes3 u = {mean_relative(air[0], v[0], n0, n1, n2),
                     mean_relative(air[1], v[1], n0, n1, n2),
                     mean_relative(air[2], v[2], n0, n1, n2)};
@@ -154,11 +152,11 @@ struct Lanes3 {
   for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(product[l]);
   const Lanes safe_r = degenerate ? one : r;
   const Lanes inv_c_norm2 = one / (degenerate ? one : c_norm2);
-  const Lanes quarter_rho = zero + 0.25 * wind.air_density_kg_m3;
+  const Lanes quarter_rho = splat(0.25 * wind.air_density_kg_m3);
   const Lanes abs_u_dot_c = u_dot_c < zero ? -u_dot_c : u_dot_c;
-  const Lanes along_c = quarter_rho * u_dot_c * inv_c_norm2 *
-                        ((zero + wind.drag) * abs_u_dot_c + (zero + wind.lift) * r);
-  const Lanes along_u = quarter_rho * (zero + wind.lift) * u_dot_c * u_dot_c / safe_r;
+  const Lanes along_c =
+      quarter_rho * u_dot_c * inv_c_norm2 * (splat(wind.drag) * abs_u_dot_c + splat(wind.lift) * r);
+  const Lanes along_u = quarter_rho * splat(wind.lift) * u_dot_c * u_dot_c / safe_r;
   const Lanes3 f = {along_c * c.x - along_u * u.x, along_c * c.y - along_u * u.y,
                     along_c * c.z - along_u * u.z};
   return {degenerate ? zero : third * f.x, degenerate ? zero : third * f.y,
@@ -259,17 +257,12 @@ __attribute__((target_clones("avx2", "default"))) void AeroForce::gather_thirds(
 
 void AeroForce::add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                            std::span<Vec3> forces_n) const {
-  const int J = lattice_.rows;
-  for (std::size_t i = 0; i < x_m.size(); ++i)
-    for (int axis = 0; axis < 3; ++axis) {
-      work_.x[axis][i] = x_m[i][axis];
-      work_.v[axis][i] = v_m_s[i][axis];
-      work_.f[axis][i] = forces_n[i][axis];
-    }
-  for (int j = 0; j + 1 < J; ++j) row_thirds(j);
+  lanes::split(x_m, work_.x);
+  lanes::split(v_m_s, work_.v);
+  lanes::split(forces_n, work_.f);
+  for (int j = 0; j + 1 < lattice_.rows; ++j) row_thirds(j);
   gather_thirds();
-  for (std::size_t i = 0; i < forces_n.size(); ++i)
-    forces_n[i] = Vec3(work_.f[0][i], work_.f[1][i], work_.f[2][i]);
+  lanes::join(work_.f, forces_n);
 }
 
 void AeroForce::linearize(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,

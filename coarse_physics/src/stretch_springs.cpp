@@ -109,15 +109,11 @@ __attribute__((target_clones("avx2", "default"))) void StretchSprings::sum_links
 
 void StretchSprings::add_forces(std::span<const Vec3> x_m, std::span<const Vec3>,
                                 std::span<Vec3> forces_n) const {
-  for (std::size_t i = 0; i < x_m.size(); ++i)
-    for (int axis = 0; axis < 3; ++axis) {
-      work_.x[axis][i] = x_m[i][axis];
-      work_.f[axis][i] = forces_n[i][axis];
-    }
+  lanes::split(x_m, work_.x);
+  lanes::split(forces_n, work_.f);
   for (int family = 0; family < 4; ++family) family_forces(family);
   sum_links();
-  for (std::size_t i = 0; i < forces_n.size(); ++i)
-    forces_n[i] = Vec3(work_.f[0][i], work_.f[1][i], work_.f[2][i]);
+  lanes::join(work_.f, forces_n);
 }
 
 double StretchSprings::energy(std::span<const Vec3> x_m) const {

@@ -8,7 +8,7 @@
 #include "flagsim/core/lanes.hpp"
 #include "flagsim/core/stop_request.hpp"
 
-// Lanes (below) are passed by value only between inlined helpers of this
+// Lanes (core/lanes.hpp) are passed by value only between inlined helpers of this
 // file, never across an ABI boundary.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -300,10 +300,12 @@ ProjectionReport FiberProjection::project(std::span<Vec3> positions_m, double to
     const bool cols_moved =
         project_family(false, positions_m, tolerance, steps_per_fiber, report.relaxation,
                        &report.fiber_steps, &cols_outside, check);
-    // Rounds 1 and 2 are not compared: the first solves every fiber unchecked.
-    const int outside = rows_outside + cols_outside;
-    if (round >= 3 && outside > outside_before) report.relaxation = kUnderRelaxation;
-    if (round >= 2) outside_before = outside;
+    // Counted from the second round on (the first solves every fiber unchecked).
+    if (check) {
+      const int outside = rows_outside + cols_outside;
+      if (outside > outside_before) report.relaxation = kUnderRelaxation;
+      outside_before = outside;
+    }
     if (!rows_moved && !cols_moved) {  // a whole round found nothing to move
       report.converged = true;
       return report;

@@ -11,6 +11,12 @@
 // target's code (two SSE2 halves) inside an AVX2 clone, and pass its vectors
 // through memory. A source using them ignores -Wpsabi (lanes are passed by
 // value only between inlined helpers, never across an ABI boundary).
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "flagsim/core/vec3.hpp"
+
 namespace flagsim::lanes {
 
 inline constexpr int kWidth = 4;
@@ -34,5 +40,16 @@ static_assert(sizeof(Lanes) == kWidth * sizeof(double));
   return Lanes{} + value;
 }
 #pragma GCC diagnostic pop
+
+/// `from`'s x, y and z into one array each (the loops above read a coordinate
+/// of consecutive nodes); `to` holds at least from.size() values per coordinate.
+inline void split(std::span<const Vec3> from, std::vector<double> (&to)[3]) {
+  for (std::size_t i = 0; i < from.size(); ++i)
+    for (int axis = 0; axis < 3; ++axis) to[axis][i] = from[i][axis];
+}
+/// The arrays back into `to`, node by node.
+inline void join(const std::vector<double> (&from)[3], std::span<Vec3> to) {
+  for (std::size_t i = 0; i < to.size(); ++i) to[i] = Vec3(from[0][i], from[1][i], from[2][i]);
+}
 
 }  // namespace flagsim::lanes
