@@ -40,6 +40,7 @@ ImplicitEuler::ImplicitEuler(const Scene& scene)
       effects_(physics_effects(scene, model_)),
       state_(initial_state(scene, model_)),
       newton_iterations_(scene.solver.iterations.value_or(1)),
+      max_step_strain_change_(scene.solver.max_step_strain_change),
       substeps_(scene.solver.substeps),
       frame_s_(1.0 / scene.fps),
       explicit_limit_s_(explicit_stability_limit(model_, terms_)) {
@@ -50,6 +51,7 @@ ImplicitEuler::ImplicitEuler(const Scene& scene)
   direct_ = scene.solver.linear == LinearSolver::kCholesky;
   if (direct_) direct_state_ = std::make_unique<Direct>();
   stiffness_diagonal_.assign(n, Mat3::Zero());
+  saved_.resize(kMaxHalvings);
   damping_diagonal_.assign(n, Mat3::Zero());
 }
 
@@ -63,9 +65,39 @@ void ImplicitEuler::advance_frame(StageTimes* times) {
   cg_max_ = cg_total_ = 0;
   if (failure_) return;
   advance_substeps(terms_, state_, substeps_, substep_s(), [&](double dt) {
-    step(dt, times);
+    advance(dt, 0, times);
     return !failure_;
   });
+}
+
+void ImplicitEuler::advance(double dt_s, int halvings, StageTimes* times) {
+  ++steps_taken_;
+  if (halvings == kMaxHalvings) {
+    step(dt_s, times);
+    return;
+  }
+  ClothState& saved = saved_[std::size_t(halvings)];
+  saved = state_;
+  step(dt_s, times);
+  if (failure_ || largest_strain_change() <= max_step_strain_change_) return;
+  ++steps_undone_;
+  state_ = saved;
+  advance(0.5 * dt_s, halvings + 1, times);
+  if (!failure_) advance(0.5 * dt_s, halvings + 1, times);
+}
+
+double ImplicitEuler::largest_strain_change() const {
+  // The row and column links: the strain the run reports (/stats/max_strain).
+  double largest = 0.0;
+  for (const LinkFamily& family : {model_.links[0], model_.links[1]}) {
+    const double inverse_rest = 1.0 / family.rest_length_m;
+    for_each_link(model_, family, [&](std::size_t a, std::size_t b, double, double) {
+      const double before = (x0_[b] - x0_[a]).norm();
+      const double after = (state_.x_m[b] - state_.x_m[a]).norm();
+      largest = std::max(largest, std::abs(after - before) * inverse_rest);
+    });
+  }
+  return largest;
 }
 
 void ImplicitEuler::apply(double dt_s, const std::vector<Vec3>& dv, std::vector<Vec3>& out) {
@@ -289,11 +321,16 @@ std::string ImplicitEuler::divergence_advice() const {
 }
 
 std::string ImplicitEuler::solver_summary() const {
+  const std::string halved =
+      steps_undone_ == 0
+          ? std::string()
+          : fmt::format("; {} of {} steps undone and halved (a strain changed by over {:g}%)",
+                        steps_undone_, steps_taken_, 100.0 * max_step_strain_change_);
   if (direct_)
-    return fmt::format("{} Newton iteration{} a step, sparse LDL^T", newton_iterations_,
-                       newton_iterations_ == 1 ? "" : "s");
-  return fmt::format("{} Newton iteration{} a step, CG {} iterations at most in the last frame",
-                     newton_iterations_, newton_iterations_ == 1 ? "" : "s", cg_max_);
+    return fmt::format("{} Newton iteration{} a step, sparse LDL^T{}", newton_iterations_,
+                       newton_iterations_ == 1 ? "" : "s", halved);
+  return fmt::format("{} Newton iteration{} a step, CG {} iterations at most in the last frame{}",
+                     newton_iterations_, newton_iterations_ == 1 ? "" : "s", cg_max_, halved);
 }
 
 }  // namespace flagsim::physics

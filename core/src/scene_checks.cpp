@@ -111,14 +111,22 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
                  "or \"infill\"");
     scene.wrinkles.reset();
   }
-  // The implicit backend alone solves a linear system; elsewhere solver.linear
-  // would be silently ignored.
+  // The implicit backend alone solves a linear system and halves its steps;
+  // elsewhere these keys would be silently ignored.
   if (const std::optional<Backend> backend = backend_of(scene);
-      backend && root.table().at_path("solver.linear") && *backend != Backend::kImplicit)
-    unused_setting("solver.linear", "solver.linear",
-                   fmt::format("the {} backend has no linear solve; solver.linear applies to "
-                               "solver.backend = \"implicit\" or scene.mode = \"implicit\"",
-                               to_string(*backend)));
+      backend && *backend != Backend::kImplicit) {
+    if (root.table().at_path("solver.linear"))
+      unused_setting("solver.linear", "solver.linear",
+                     fmt::format("the {} backend has no linear solve; solver.linear applies to "
+                                 "solver.backend = \"implicit\" or scene.mode = \"implicit\"",
+                                 to_string(*backend)));
+    if (root.table().at_path("solver.max_step_strain_change"))
+      unused_setting("solver.max_step_strain_change", "solver.max_step_strain_change",
+                     fmt::format("the {} backend does not halve its steps; "
+                                 "solver.max_step_strain_change applies to solver.backend = "
+                                 "\"implicit\" or scene.mode = \"implicit\"",
+                                 to_string(*backend)));
+  }
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
                                       to_string(scene.mode), fmt::join(unused, ", ")));

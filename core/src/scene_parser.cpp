@@ -66,6 +66,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "solver.substeps",
                                          "solver.iterations",
                                          "solver.linear",
+                                         "solver.max_step_strain_change",
                                          "keyframe.time",
                                          "keyframe.corners",
                                          "output.file",
@@ -364,6 +365,9 @@ void read_run_tables(TableReader& root, Scene& scene) {
     if (auto iterations = in.optional_integer("iterations", 1, 10'000))
       scene.solver.iterations = int(*iterations);
     scene.solver.linear = in.choice_of("linear", scene.solver.linear, kLinearSolverNames);
+    scene.solver.max_step_strain_change =
+        in.real("max_step_strain_change", scene.solver.max_step_strain_change,
+                Bound{0.0, 10.0, true}, "strain");
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("output")) {

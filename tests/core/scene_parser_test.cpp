@@ -145,6 +145,21 @@ TEST(SceneParser, LinearSolverOnlyWithTheImplicitBackend) {
   EXPECT_EQ(scene.notes[0], "note: xpbd mode does not use solver.linear: ignored");
 }
 
+TEST(SceneParser, StepStrainChangeOnlyWithTheImplicitBackendAndPositive) {
+  const std::string key = "[solver]\nmax_step_strain_change = 0.02\n";
+  const std::string message = error_of(std::string(kMinimal) + key);
+  EXPECT_NE(message.find("s.toml:8:26: solver.max_step_strain_change: the spring-damper backend "
+                         "does not halve its steps"),
+            std::string::npos)
+      << message;
+  std::string implicit_scene = kMinimal;
+  implicit_scene.replace(implicit_scene.find("mass-spring"), 11, "implicit");
+  EXPECT_EQ(parse_scene(implicit_scene, "s.toml").solver.max_step_strain_change, 0.05);
+  EXPECT_EQ(parse_scene(implicit_scene + key, "s.toml").solver.max_step_strain_change, 0.02);
+  const std::string zero = error_of(implicit_scene + "[solver]\nmax_step_strain_change = 0\n");
+  EXPECT_NE(zero.find("s.toml:8:26: solver.max_step_strain_change:"), std::string::npos) << zero;
+}
+
 TEST(SceneParser, CoarseMustDivideFineAndSaysWhatWould) {
   const std::string message = error_of(std::string(kMinimal) + "coarse = [4, 5]\n");
   EXPECT_NE(message.find("s.toml:7:10: flag.coarse"), std::string::npos) << message;

@@ -146,6 +146,9 @@ struct Solver {
   /// iterations of "implicit" (default 1), constraint passes of "xpbd" (default 1).
   std::optional<int> iterations;
   LinearSolver linear = LinearSolver::kCg;
+  /// Implicit backend: a step that changes some row or column link's strain
+  /// by more than this is undone and taken as two half steps (strain, 1).
+  double max_step_strain_change = 0.05;
 };
 
 struct Keyframe {
