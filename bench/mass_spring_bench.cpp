@@ -1,5 +1,6 @@
 // Cost of the spring-damper baseline on the default scene's cloth: one whole
-// substep, and each force term alone, at the lattices of the README's table.
+// substep, and each force term alone, at the lattices of the README's table;
+// and one XPBD frame of 320 substeps (its cost per substep in the counters).
 // Per-node figures are in the counters (ns per node = 1e9 / nodes_per_second).
 #include <benchmark/benchmark.h>
 
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/spring_damper.hpp"
+#include "flagsim/coarse_physics/xpbd.hpp"
 #include "flagsim/core/scene_parser.hpp"
 
 namespace {
@@ -16,9 +18,8 @@ using flagsim::Vec3;
 using flagsim::physics::ClothState;
 using flagsim::physics::SpringDamperSolver;
 
-Scene default_scene_at(int rows, int cols) {
-  const std::vector<std::string> sets = {"flag.fine=[" + std::to_string(rows) + "," +
-                                         std::to_string(cols) + "]"};
+Scene default_scene_at(int rows, int cols, std::vector<std::string> sets = {}) {
+  sets.push_back("flag.fine=[" + std::to_string(rows) + "," + std::to_string(cols) + "]");
   return flagsim::parse_scene(flagsim::default_scene_toml(), flagsim::kDefaultSceneName, sets);
 }
 
@@ -62,8 +63,27 @@ void BM_ForceTerm(benchmark::State& bench) {
       benchmark::Counter(double(state.x_m.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+void BM_XpbdFrame(benchmark::State& bench) {
+  const Scene scene = default_scene_at(int(bench.range(0)), int(bench.range(1)),
+                                       {"scene.mode=\"xpbd\"", "solver.substeps=320"});
+  flagsim::physics::Xpbd solver(scene);
+  for (int f = 0; f < 3; ++f) solver.advance_frame(nullptr);  // loaded by the wind
+  for (auto _ : bench) {
+    solver.advance_frame(nullptr);
+    benchmark::DoNotOptimize(solver.state().x_m.data());
+  }
+  bench.counters["substeps"] = benchmark::Counter(
+      solver.substeps_per_frame(),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
+BENCHMARK(BM_XpbdFrame)
+    ->Args({33, 49})
+    ->Args({65, 97})
+    ->Args({129, 193})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Substep)
     ->Args({33, 49})
     ->Args({65, 97})

@@ -59,8 +59,16 @@ Xpbd::Xpbd(const Scene& scene)
         if (!group.empty()) bending_groups_.push_back(std::move(group));
   }
   link_lambda_.resize(link_groups_.size());
-  for (std::size_t g = 0; g < link_groups_.size(); ++g)
+  link_rest_.resize(link_groups_.size());
+  link_compliance_.resize(link_groups_.size());
+  for (std::size_t g = 0; g < link_groups_.size(); ++g) {
     link_lambda_[g].resize(link_groups_[g].size());
+    for (const Link& link : link_groups_[g]) {
+      link_rest_[g].push_back(link.rest);
+      link_compliance_[g].push_back(link.compliance);
+    }
+  }
+  for (auto& axis : positions_) axis.resize(n);
   bending_lambda_.resize(bending_groups_.size());
   for (std::size_t g = 0; g < bending_groups_.size(); ++g)
     bending_lambda_[g].resize(bending_groups_[g].size());
@@ -114,59 +122,112 @@ void Xpbd::step(double dt_s, StageTimes* times) {
   state_.time_s = next_time;
 }
 
+namespace {
+
+using lanes::Lanes;
+
+// Nodes a, a + 2, a + 4, a + 6 and a + 1, a + 3, a + 5, a + 7 of one
+// coordinate (the row links (a, a + 1) of one colour), and back.
+[[gnu::always_inline]] inline void deinterleave(const double* from, Lanes& even, Lanes& odd) {
+  const Lanes low = lanes::load(from), high = lanes::load(from + lanes::kWidth);
+  even = __builtin_shufflevector(low, high, 0, 2, 4, 6);
+  odd = __builtin_shufflevector(low, high, 1, 3, 5, 7);
+}
+[[gnu::always_inline]] inline void interleave(double* to, Lanes even, Lanes odd) {
+  lanes::store(to, __builtin_shufflevector(even, odd, 0, 4, 1, 5));
+  lanes::store(to + lanes::kWidth, __builtin_shufflevector(even, odd, 2, 6, 3, 7));
+}
+
+}  // namespace
+
 __attribute__((target_clones("avx2", "default"))) void Xpbd::project_links(std::size_t g,
                                                                            double inverse_h2) {
-  using lanes::Lanes;
+  using lanes::load;
   using lanes::splat;
+  using lanes::store;
   constexpr int kLanes = lanes::kWidth;
-  std::vector<Vec3>& p = predicted_;
-  const std::vector<double>& w = inverse_mass_;
+  double* const px = positions_[0].data();
+  double* const py = positions_[1].data();
+  double* const pz = positions_[2].data();
+  const double* const w = inverse_mass_.data();
   const std::vector<Link>& group = link_groups_[g];
-  std::vector<double>& lambda = link_lambda_[g];
+  double* const lambda = link_lambda_[g].data();
+  const double* const rest_of = link_rest_[g].data();
+  const double* const compliance_of = link_compliance_[g].data();
   // C = |x_b - x_a| - S, dlambda = (-C - alpha lambda) / (w_a + w_b + alpha),
   // x_a -= w_a dlambda n, x_b += w_b dlambda n (XPBD, Macklin et al. 2016, eq. 18).
   const auto project_one = [&](std::size_t l) {
-    const Link& link = group[l];
-    const Vec3 d = p[link.b] - p[link.a];
+    const std::size_t a = group[l].a, b = group[l].b;
+    const Vec3 d(px[b] - px[a], py[b] - py[a], pz[b] - pz[a]);
     const double length = d.norm();
     if (length == 0.0) return;  // no direction to correct along
-    const double alpha = link.compliance * inverse_h2;
-    const double w_a = w[link.a], w_b = w[link.b];
-    const double dlambda = (-(length - link.rest) - alpha * lambda[l]) / (w_a + w_b + alpha);
+    const double alpha = compliance_of[l] * inverse_h2;
+    const double w_a = w[a], w_b = w[b];
+    const double dlambda = (-(length - rest_of[l]) - alpha * lambda[l]) / (w_a + w_b + alpha);
     lambda[l] += dlambda;
     const Vec3 step = (dlambda / length) * d;
-    p[link.a] -= w_a * step;
-    p[link.b] += w_b * step;
+    px[a] -= w_a * step.x(), py[a] -= w_a * step.y(), pz[a] -= w_a * step.z();
+    px[b] += w_b * step.x(), py[b] += w_b * step.y(), pz[b] += w_b * step.z();
   };
   std::size_t l = 0;
   for (; l + kLanes <= group.size(); l += kLanes) {
-    Lanes ax, ay, az, bx, by, bz, w_a, w_b, rest, compliance, old_lambda;
-    for (int i = 0; i < kLanes; ++i) {
-      const Link& link = group[l + std::size_t(i)];
-      const Vec3 &a = p[link.a], &b = p[link.b];
-      ax[i] = a.x(), ay[i] = a.y(), az[i] = a.z();
-      bx[i] = b.x(), by[i] = b.y(), bz[i] = b.z();
-      w_a[i] = w[link.a], w_b[i] = w[link.b];
-      rest[i] = link.rest, compliance[i] = link.compliance;
-      old_lambda[i] = lambda[l + std::size_t(i)];
+    // The batch's layout: links of consecutive nodes (column links and
+    // diagonals, within a row), of every second node with b = a + 1 (row
+    // links), or anything else (a row's end, a link left out between pins).
+    const std::size_t a0 = group[l].a, b0 = group[l].b;
+    const std::size_t stride = group[l + 1].a - a0;
+    bool regular = stride == 1 || (stride == 2 && b0 == a0 + 1);
+    for (std::size_t i = 1; i < std::size_t(kLanes) && regular; ++i)
+      regular = group[l + i].a == a0 + i * stride && group[l + i].b == b0 + i * stride;
+    Lanes ax, ay, az, bx, by, bz, w_a, w_b;
+    if (regular && stride == 1) {
+      ax = load(px + a0), ay = load(py + a0), az = load(pz + a0);
+      bx = load(px + b0), by = load(py + b0), bz = load(pz + b0);
+      w_a = load(w + a0), w_b = load(w + b0);
+    } else if (regular) {
+      deinterleave(px + a0, ax, bx);
+      deinterleave(py + a0, ay, by);
+      deinterleave(pz + a0, az, bz);
+      deinterleave(w + a0, w_a, w_b);
+    } else {
+      for (int i = 0; i < kLanes; ++i) {
+        const std::size_t a = group[l + std::size_t(i)].a, b = group[l + std::size_t(i)].b;
+        ax[i] = px[a], ay[i] = py[a], az[i] = pz[a];
+        bx[i] = px[b], by[i] = py[b], bz[i] = pz[b];
+        w_a[i] = w[a], w_b[i] = w[b];
+      }
     }
+    const Lanes old_lambda = load(lambda + l);
     const Lanes dx = bx - ax, dy = by - ay, dz = bz - az;
     const Lanes length2 = (dx * dx + dy * dy) + dz * dz;
     Lanes length;
     for (int i = 0; i < kLanes; ++i) length[i] = std::sqrt(length2[i]);
     const auto moves = length != splat(0.0);
     const Lanes safe_length = moves ? length : splat(1.0);
-    const Lanes alpha = compliance * splat(inverse_h2);
-    const Lanes dlambda = (-(length - rest) - alpha * old_lambda) / ((w_a + w_b) + alpha);
+    const Lanes alpha = load(compliance_of + l) * splat(inverse_h2);
+    const Lanes dlambda =
+        (-(length - load(rest_of + l)) - alpha * old_lambda) / ((w_a + w_b) + alpha);
     const Lanes scale = dlambda / safe_length;
     const Lanes sx = scale * dx, sy = scale * dy, sz = scale * dz;
-    const Lanes new_lambda = old_lambda + dlambda;
-    for (int i = 0; i < kLanes; ++i) {
-      if (!moves[i]) continue;
-      const Link& link = group[l + std::size_t(i)];
-      lambda[l + std::size_t(i)] = new_lambda[i];
-      p[link.a] = Vec3(ax[i] - w_a[i] * sx[i], ay[i] - w_a[i] * sy[i], az[i] - w_a[i] * sz[i]);
-      p[link.b] = Vec3(bx[i] + w_b[i] * sx[i], by[i] + w_b[i] * sy[i], bz[i] + w_b[i] * sz[i]);
+    // A link of zero length keeps its nodes and multiplier (as project_one).
+    store(lambda + l, moves ? old_lambda + dlambda : old_lambda);
+    ax = moves ? ax - w_a * sx : ax, ay = moves ? ay - w_a * sy : ay;
+    az = moves ? az - w_a * sz : az;
+    bx = moves ? bx + w_b * sx : bx, by = moves ? by + w_b * sy : by;
+    bz = moves ? bz + w_b * sz : bz;
+    if (regular && stride == 1) {
+      store(px + a0, ax), store(py + a0, ay), store(pz + a0, az);
+      store(px + b0, bx), store(py + b0, by), store(pz + b0, bz);
+    } else if (regular) {
+      interleave(px + a0, ax, bx);
+      interleave(py + a0, ay, by);
+      interleave(pz + a0, az, bz);
+    } else {
+      for (int i = 0; i < kLanes; ++i) {
+        const std::size_t a = group[l + std::size_t(i)].a, b = group[l + std::size_t(i)].b;
+        px[a] = ax[i], py[a] = ay[i], pz[a] = az[i];
+        px[b] = bx[i], py[b] = by[i], pz[b] = bz[i];
+      }
     }
   }
   for (; l < group.size(); ++l) project_one(l);
@@ -179,7 +240,9 @@ void Xpbd::project(double dt_s) {
   for (auto& lambda : link_lambda_) std::fill(lambda.begin(), lambda.end(), 0.0);
   for (auto& lambda : bending_lambda_) std::fill(lambda.begin(), lambda.end(), Vec3::Zero());
   for (int iteration = 0; iteration < iterations_; ++iteration) {
+    lanes::split(p, positions_);
     for (std::size_t g = 0; g < link_groups_.size(); ++g) project_links(g, inverse_h2);
+    lanes::join(positions_, p);
     for (std::size_t g = 0; g < bending_groups_.size(); ++g) {
       const std::vector<Triple>& group = bending_groups_[g];
       std::vector<Vec3>& lambda = bending_lambda_[g];

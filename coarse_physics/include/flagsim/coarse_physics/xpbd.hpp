@@ -70,9 +70,9 @@ class Xpbd final : public ClothIntegrator {
  private:
   void step(double dt_s, StageTimes* times);
   void project(double dt_s);
-  /// One pass over the links of colour group `g` (they share no node, so
-  /// kLanes of them are projected side by side with the same bits as one at
-  /// a time); alpha = compliance * inverse_h2.
+  /// One pass over the links of colour group `g` on the x, y, z arrays
+  /// positions_ (they share no node, so kLanes of them are projected side by
+  /// side with the same bits as one at a time); alpha = compliance * inverse_h2.
   void project_links(std::size_t g, double inverse_h2);
 
   ClothModel model_;
@@ -85,6 +85,12 @@ class Xpbd final : public ClothIntegrator {
   std::vector<std::vector<Link>> link_groups_;
   std::vector<std::vector<Triple>> bending_groups_;
   std::vector<std::vector<double>> link_lambda_;
+  /// Per group, each link's S (m) and 1/k (m/N), in the group's order.
+  std::vector<std::vector<double>> link_rest_, link_compliance_;
+  /// The predicted positions as x, y, z arrays [J*K] while links are projected:
+  /// a group's links are consecutive nodes of a lattice row (every second node
+  /// for row links), so kLanes of them load and store side by side.
+  std::vector<double> positions_[3];
   std::vector<std::vector<Vec3>> bending_lambda_;
   std::vector<Vec3> forces_, predicted_;
   int iterations_ = 1;
