@@ -79,8 +79,11 @@ void ImplicitEuler::advance(double dt_s, int halvings, StageTimes* times) {
   ClothState& saved = saved_[std::size_t(halvings)];
   saved = state_;
   step(dt_s, times);
-  if (failure_ || largest_strain_change() <= max_step_strain_change_) return;
+  // A solve that did not converge is retried too: shorter steps solve in
+  // fewer iterations. Only the shortest step's failure ends the run.
+  if (!failure_ && largest_strain_change() <= max_step_strain_change_) return;
   ++steps_undone_;
+  failure_.reset();
   state_ = saved;
   advance(0.5 * dt_s, halvings + 1, times);
   if (!failure_) advance(0.5 * dt_s, halvings + 1, times);
@@ -152,10 +155,10 @@ bool ImplicitEuler::solve(double dt_s, const std::vector<Vec3>& rhs, std::vector
   cg_total_ += iteration;
   if (!converged)
     failure_ = fmt::format(
-        "implicit Euler: the linear solve did not converge at t = {:.4g} s (relative residual "
-        "{:.2g} after {} conjugate-gradient iterations, tolerance {:.0e}): raise solver.substeps "
-        "(now {}) for shorter steps, which it solves in fewer iterations",
-        state_.time_s, relative, iteration, kCgTolerance, substeps_);
+        "implicit Euler: the linear solve did not converge at t = {:.4g} s in a step of {:.3g} s "
+        "(relative residual {:.2g} after {} conjugate-gradient iterations, tolerance {:.0e}): "
+        "raise solver.substeps (now {}) for shorter steps, which it solves in fewer iterations",
+        state_.time_s, dt_s, relative, iteration, kCgTolerance, substeps_);
   return converged;
 }
 
@@ -324,8 +327,10 @@ std::string ImplicitEuler::solver_summary() const {
   const std::string halved =
       steps_undone_ == 0
           ? std::string()
-          : fmt::format("; {} of {} steps undone and halved (a strain changed by over {:g}%)",
-                        steps_undone_, steps_taken_, 100.0 * max_step_strain_change_);
+          : fmt::format(
+                "; {} of {} steps undone and halved (a strain changed by over {:g}% or the "
+                "solve did not converge)",
+                steps_undone_, steps_taken_, 100.0 * max_step_strain_change_);
   if (direct_)
     return fmt::format("{} Newton iteration{} a step, sparse LDL^T{}", newton_iterations_,
                        newton_iterations_ == 1 ? "" : "s", halved);

@@ -125,7 +125,8 @@ TEST(ImplicitEuler, CholeskyOfTheProbedMatrixAgreesWithTheConjugateGradient) {
 TEST(ImplicitEuler, AnUnsolvableStepIsAFailureThatSaysWhatToChange) {
   // A cloth 10^7 times stiffer than its weight needs, a second a step: the
   // system's condition number (h^2 k / m ~ 1e10) is past what the conjugate
-  // gradient reaches in kMaxCgIterations.
+  // gradient reaches in kMaxCgIterations, and still is at 1/32 s: each
+  // halving's first step fails, the shortest one ends the run.
   Scene scene = test::hanging_cloth(Backend::kImplicit, PinSet::kLeft);
   scene.flag.fine_rows = 65;
   scene.flag.fine_cols = 97;
@@ -140,7 +141,10 @@ TEST(ImplicitEuler, AnUnsolvableStepIsAFailureThatSaysWhatToChange) {
   EXPECT_NE(physics.failure()->find("did not converge"), std::string::npos) << *physics.failure();
   EXPECT_NE(physics.failure()->find("raise solver.substeps (now 1)"), std::string::npos)
       << *physics.failure();
+  EXPECT_NE(physics.failure()->find("in a step of 0.0312 s"), std::string::npos)
+      << *physics.failure();
   EXPECT_EQ(physics.cg_iterations_max(), kMaxCgIterations);
+  EXPECT_EQ(physics.steps_undone(), kMaxHalvings);
 }
 
 }  // namespace

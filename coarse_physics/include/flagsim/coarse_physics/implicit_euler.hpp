@@ -37,10 +37,12 @@
 // or column link's strain by more than solver.max_step_strain_change (default
 // 5%) is undone and taken again as two steps of half the length, down to
 // 1 / 2^kMaxHalvings of the step solver.substeps sets; a shortest step is
-// accepted whatever it does (the run's strain limit still applies). What it costs is accuracy
-// (numerical damping of the flapping grows with h) and CG iterations, which grow with h^2 k / m
-// (the system's condition number): when the CG does not reach its tolerance in kMaxCgIterations,
-// the frame is reported as diverged, with what to change.
+// accepted whatever it does (the run's strain limit still applies). What a
+// long step costs is accuracy (numerical damping of the flapping grows with h)
+// and CG iterations, which grow with h^2 k / m (the system's condition
+// number): a step whose CG does not reach its tolerance in kMaxCgIterations is
+// undone and halved the same way; only a shortest step's failure ends the run
+// as diverged, with what to change.
 #include <memory>
 #include <optional>
 #include <string>
