@@ -51,7 +51,6 @@ ImplicitEuler::ImplicitEuler(const Scene& scene)
   direct_ = scene.solver.linear == LinearSolver::kCholesky;
   if (direct_) direct_state_ = std::make_unique<Direct>();
   stiffness_diagonal_.assign(n, Mat3::Zero());
-  saved_.resize(kMaxHalvings);
   damping_diagonal_.assign(n, Mat3::Zero());
 }
 
@@ -76,15 +75,17 @@ void ImplicitEuler::advance(double dt_s, int halvings, StageTimes* times) {
     step(dt_s, times);
     return;
   }
-  ClothState& saved = saved_[std::size_t(halvings)];
-  saved = state_;
+  const double start_s = state_.time_s;
   step(dt_s, times);
   // A solve that did not converge is retried too: shorter steps solve in
   // fewer iterations. Only the shortest step's failure ends the run.
   if (!failure_ && largest_strain_change() <= max_step_strain_change_) return;
   ++steps_undone_;
   failure_.reset();
-  state_ = saved;
+  // Undone: step() kept the state it started from in x0_ and v0_.
+  state_.x_m = x0_;
+  state_.v_m_s = v0_;
+  state_.time_s = start_s;
   advance(0.5 * dt_s, halvings + 1, times);
   if (!failure_) advance(0.5 * dt_s, halvings + 1, times);
 }

@@ -115,17 +115,15 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
   // elsewhere these keys would be silently ignored.
   if (const std::optional<Backend> backend = backend_of(scene);
       backend && *backend != Backend::kImplicit) {
-    if (root.table().at_path("solver.linear"))
-      unused_setting("solver.linear", "solver.linear",
-                     fmt::format("the {} backend has no linear solve; solver.linear applies to "
-                                 "solver.backend = \"implicit\" or scene.mode = \"implicit\"",
-                                 to_string(*backend)));
-    if (root.table().at_path("solver.max_step_strain_change"))
-      unused_setting("solver.max_step_strain_change", "solver.max_step_strain_change",
-                     fmt::format("the {} backend does not halve its steps; "
-                                 "solver.max_step_strain_change applies to solver.backend = "
-                                 "\"implicit\" or scene.mode = \"implicit\"",
-                                 to_string(*backend)));
+    const std::pair<const char*, const char*> implicit_only[] = {
+        {"solver.linear", "has no linear solve"},
+        {"solver.max_step_strain_change", "does not halve its steps"}};
+    for (const auto& [key, lacks] : implicit_only)
+      if (root.table().at_path(key))
+        unused_setting(key, key,
+                       fmt::format("the {} backend {}; {} applies to solver.backend = "
+                                   "\"implicit\" or scene.mode = \"implicit\"",
+                                   to_string(*backend), lacks, key));
   }
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",

@@ -116,7 +116,8 @@ class ImplicitEuler final : public ClothIntegrator {
   int substeps_ = 1;
   double frame_s_ = 0.0;
   double explicit_limit_s_ = 0.0;
-  // Work arrays [J*K], kept between steps.
+  // Work arrays [J*K], kept between steps; x0_ and v0_ hold the state a step
+  // started from (an undone step goes back to it).
   std::vector<Vec3> x0_, v0_, forces_, residual_, delta_, r_, z_, p_, ap_, scratch_;
   std::vector<Mat3> block_inverse_;  ///< inverse diagonal blocks of A
   std::vector<Mat3> stiffness_diagonal_, damping_diagonal_;
@@ -124,7 +125,6 @@ class ImplicitEuler final : public ClothIntegrator {
   int matrix_stage_ = -1, solve_stage_ = -1;
   int cg_max_ = 0, cg_total_ = 0;
   long steps_taken_ = 0, steps_undone_ = 0;
-  std::vector<ClothState> saved_;  ///< [kMaxHalvings] the state before a step, per halving
   std::optional<std::string> failure_;
   bool direct_ = false;  ///< solver.linear = "cholesky"
   struct Direct;         ///< the assembled matrix and its factorisation
