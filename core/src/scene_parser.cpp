@@ -365,9 +365,8 @@ void read_run_tables(TableReader& root, Scene& scene) {
     if (auto iterations = in.optional_integer("iterations", 1, 10'000))
       scene.solver.iterations = int(*iterations);
     scene.solver.linear = in.choice_of("linear", scene.solver.linear, kLinearSolverNames);
-    scene.solver.max_step_strain_change =
-        in.real("max_step_strain_change", scene.solver.max_step_strain_change,
-                Bound{0.0, 10.0, true}, "strain");
+    scene.solver.max_step_strain_change = in.real(
+        "max_step_strain_change", scene.solver.max_step_strain_change, Bound{0.0, 10.0, true}, "");
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("output")) {
