@@ -83,9 +83,33 @@ double mean_shape_rms(const Frames& a, const Frames& b, int first_frame) {
   return rms_distance(mean_a, mean_b) / double(end - first_frame);
 }
 
+FlapFrequency flap_frequency(std::span<const double> signal, double fps) {
+  FlapFrequency result;
+  const std::span<const double> kept = signal;
+  const double bin = peak_bin(kept);
+  if (bin < 0.0) return result;  // no variation: no flapping
+  result.spectral_hz = bin * fps / double(kept.size());
+  double mean = 0.0;
+  for (double v : kept) mean += v;
+  mean /= double(kept.size());
+  // Crossing times (in samples), linear between the two samples either side.
+  std::vector<double> crossings;
+  for (std::size_t i = 0; i + 1 < kept.size(); ++i) {
+    const double a = kept[i] - mean, b = kept[i + 1] - mean;
+    if ((a < 0.0) != (b < 0.0)) crossings.push_back(double(i) + a / (a - b));
+  }
+  result.crossings = int(crossings.size());
+  if (crossings.size() < 3) {
+    result.hz = result.spectral_hz;  // under a period: the spectrum is all there is
+    return result;
+  }
+  // (n - 1) half periods between the first and the last crossing.
+  result.hz = double(crossings.size() - 1) * fps / (2.0 * (crossings.back() - crossings.front()));
+  return result;
+}
+
 double flap_frequency_hz(std::span<const double> signal, double fps) {
-  const double bin = peak_bin(signal);
-  return bin < 0.0 ? 0.0 : bin * fps / double(signal.size());
+  return flap_frequency(signal, fps).hz;
 }
 
 StrainDistribution strain_distribution(const Lattice& lattice, const Frames& frames) {

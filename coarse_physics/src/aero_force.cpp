@@ -1,6 +1,8 @@
 #include "flagsim/coarse_physics/aero_force.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "flagsim/core/lanes.hpp"
@@ -22,13 +24,19 @@ Vec3 triangle_aero_force(const Vec3& x0, const Vec3& x1, const Vec3& x2,
   const double c_norm2 = c.squaredNorm(), speed2 = u.squaredNorm();
   if (c_norm2 == 0.0 || speed2 == 0.0) return Vec3::Zero();
   const double u_dot_c = u.dot(c);
-  const double r = std::sqrt(c_norm2 * speed2);  // |c| |u|
+  const double product = c_norm2 * speed2;
+  const double r = std::sqrt(product);  // |c| |u|
+  // |c| |u_t| with u_t = u - (u.c) c/|c|^2, the flow along the plate
+  const double tangential = std::sqrt(std::max(0.0, product - u_dot_c * u_dot_c));
   const double inv_c_norm2 = 1.0 / c_norm2;
   const double quarter_rho = 0.25 * wind.air_density_kg_m3;
-  // u_n |u_n| = (u.c)|u.c|/|c|^2,  u_n |u| = (u.c) r/|c|^2,  u_n^2 |c|/|u| = (u.c)^2/r
+  // u_n |u_n| = (u.c)|u.c|/|c|^2,  u_n |u| = (u.c) r/|c|^2,  u_n^2 |c|/|u| = (u.c)^2/r;
+  // friction 1/4 rho C_f |c| |u_t| u_t = friction (u - (u.c)/|c|^2 c)
+  const double friction = quarter_rho * wind.friction * tangential;
   const double along_c =
-      quarter_rho * u_dot_c * inv_c_norm2 * (wind.drag * std::abs(u_dot_c) + wind.lift * r);
-  const double along_u = quarter_rho * wind.lift * u_dot_c * u_dot_c / r;
+      quarter_rho * u_dot_c * inv_c_norm2 * (wind.drag * std::abs(u_dot_c) + wind.lift * r) -
+      friction * u_dot_c * inv_c_norm2;
+  const double along_u = quarter_rho * wind.lift * u_dot_c * u_dot_c / r - friction;
   return along_c * c - along_u * u;
 }
 
@@ -50,12 +58,25 @@ Mat3 triangle_aero_velocity_jacobian(const Vec3& x0, const Vec3& x1, const Vec3&
       (q / c_norm2) * (wind.drag * 2.0 * std::abs(s) * c + wind.lift * (r * c + s * dr));
   const double beta = q * wind.lift * s * s / r;
   const Vec3 dbeta = q * wind.lift * ((2.0 * s / r) * c - (s * s / (r * r)) * dr);
-  return c * dalpha.transpose() - u * dbeta.transpose() - beta * Mat3::Identity();
+  Mat3 jacobian = c * dalpha.transpose() - u * dbeta.transpose() - beta * Mat3::Identity();
+  // Friction q C_f g with g = t u_t, t = |c| |u_t| = sqrt(|c|^2 |u|^2 - s^2),
+  // u_t = u - s c/|c|^2: dt/du = |c|^2 u_t / t, du_t/du = I - c c^T/|c|^2, so
+  //   dg/du = (|c|^2/t) u_t u_t^T + t I - (t/|c|^2) c c^T  (the first term -> 0 as t -> 0).
+  const double t = std::sqrt(std::max(0.0, c_norm2 * speed2 - s * s));
+  if (wind.friction > 0.0 && t > 0.0) {
+    const Vec3 u_t = u - (s / c_norm2) * c;
+    jacobian += q * wind.friction *
+                ((c_norm2 / t) * u_t * u_t.transpose() + t * Mat3::Identity() -
+                 (t / c_norm2) * c * c.transpose());
+  }
+  return jacobian;
 }
 
 AeroForce::AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t seed,
                      double areal_density_kg_m2, double cloth_speed_bound_m_s)
-    : lattice_(model.lattice),
+    : panels_(model.lattice, wind.panel_m),
+      lattice_(panels_.lattice()),
+      cloth_nodes_(model.lattice.node_count()),
       wind_(wind),
       field_(wind, seed),
       areal_density_kg_m2_(areal_density_kg_m2),
@@ -71,13 +92,40 @@ AeroForce::AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t se
     work_.upper[axis].resize(cells);
     work_.lower[axis].resize(cells);
   }
+  panel_x_.resize(nodes);
+  panel_v_.resize(nodes);
+  panel_out_.resize(nodes);
+  cell_scale_.assign(cells, 1.0);
+  if (!panels_.same_lattice()) {
+    const std::vector<Vec3> rest = model.lattice.rest_positions();
+    const std::span<const Vec3> sampled = on_panels(rest, panel_x_);
+    const int Kp = lattice_.cols;
+    for (int j = 0; j + 1 < lattice_.rows; ++j)
+      for (int k = 0; k + 1 < Kp; ++k) {
+        const Vec3& corner = sampled[lattice_.index(j, k)];
+        const double across = (sampled[lattice_.index(j, k + 1)] - corner).norm();
+        const double down = (sampled[lattice_.index(j + 1, k)] - corner).norm();
+        cell_scale_[std::size_t(j) * std::size_t(Kp - 1) + std::size_t(k)] =
+            (lattice_.spacing_x_m * lattice_.spacing_y_m) / (across * down);
+      }
+  }
   lanes::split(air_m_s_, work_.air);  // the steady wind's, kept while no frame changes it
-  begin_frame(0.0, lattice_.rest_positions());
+  begin_frame(0.0, model.lattice.rest_positions());
+}
+
+std::span<const Vec3> AeroForce::on_panels(std::span<const Vec3> values,
+                                           std::vector<Vec3>& out) const {
+  assert(values.size() == cloth_nodes_);
+  if (panels_.same_lattice()) return values;
+  panels_.sample(values, work_.f);  // work_.f as scratch: add_forces refills it
+  lanes::join(work_.f, out);
+  return out;
 }
 
 void AeroForce::begin_frame(double time_s, std::span<const Vec3> x_m) {
   if (field_.steady()) return;  // the mean wind everywhere, set once
-  for (std::size_t i = 0; i < air_m_s_.size(); ++i) air_m_s_[i] = field_.velocity(x_m[i], time_s);
+  const std::span<const Vec3> x = on_panels(x_m, panel_x_);
+  for (std::size_t i = 0; i < air_m_s_.size(); ++i) air_m_s_[i] = field_.velocity(x[i], time_s);
   lanes::split(air_m_s_, work_.air);
 }
 
@@ -148,15 +196,22 @@ struct Lanes3 {
   const auto degenerate = (c_norm2 == zero) | (speed2 == zero);
   const Lanes u_dot_c = (u.x * c.x + u.y * c.y) + u.z * c.z;
   const Lanes product = c_norm2 * speed2;
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(product[l]);
+  const Lanes tangential2 = product - u_dot_c * u_dot_c;
+  const Lanes clamped2 = zero < tangential2 ? tangential2 : zero;  // std::max(0.0, t2)
+  Lanes r, tangential;
+  for (int l = 0; l < kLanes; ++l) {
+    r[l] = std::sqrt(product[l]);
+    tangential[l] = std::sqrt(clamped2[l]);
+  }
   const Lanes safe_r = degenerate ? one : r;
   const Lanes inv_c_norm2 = one / (degenerate ? one : c_norm2);
   const Lanes quarter_rho = splat(0.25 * wind.air_density_kg_m3);
   const Lanes abs_u_dot_c = u_dot_c < zero ? -u_dot_c : u_dot_c;
-  const Lanes along_c =
-      quarter_rho * u_dot_c * inv_c_norm2 * (splat(wind.drag) * abs_u_dot_c + splat(wind.lift) * r);
-  const Lanes along_u = quarter_rho * splat(wind.lift) * u_dot_c * u_dot_c / safe_r;
+  const Lanes friction = quarter_rho * splat(wind.friction) * tangential;
+  const Lanes along_c = quarter_rho * u_dot_c * inv_c_norm2 *
+                            (splat(wind.drag) * abs_u_dot_c + splat(wind.lift) * r) -
+                        friction * u_dot_c * inv_c_norm2;
+  const Lanes along_u = quarter_rho * splat(wind.lift) * u_dot_c * u_dot_c / safe_r - friction;
   const Lanes3 f = {along_c * c.x - along_u * u.x, along_c * c.y - along_u * u.y,
                     along_c * c.z - along_u * u.z};
   return {degenerate ? zero : third * f.x, degenerate ? zero : third * f.y,
@@ -257,22 +312,40 @@ __attribute__((target_clones("avx2", "default"))) void AeroForce::gather_thirds(
 
 void AeroForce::add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                            std::span<Vec3> forces_n) const {
-  lanes::split(x_m, work_.x);
-  lanes::split(v_m_s, work_.v);
-  lanes::split(forces_n, work_.f);
+  if (panels_.same_lattice()) {
+    lanes::split(x_m, work_.x);
+    lanes::split(v_m_s, work_.v);
+    lanes::split(forces_n, work_.f);
+    for (int j = 0; j + 1 < lattice_.rows; ++j) row_thirds(j);
+    gather_thirds();
+    lanes::join(work_.f, forces_n);
+    return;
+  }
+  panels_.sample(x_m, work_.x);
+  panels_.sample(v_m_s, work_.v);
+  for (auto& f : work_.f) std::fill(f.begin(), f.end(), 0.0);
   for (int j = 0; j + 1 < lattice_.rows; ++j) row_thirds(j);
+  for (int axis = 0; axis < 3; ++axis)
+    for (std::size_t cell = 0; cell < cell_scale_.size(); ++cell) {
+      work_.upper[axis][cell] *= cell_scale_[cell];
+      work_.lower[axis][cell] *= cell_scale_[cell];
+    }
   gather_thirds();
-  lanes::join(work_.f, forces_n);
+  panels_.spread(work_.f, forces_n);
 }
 
-void AeroForce::linearize(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
+void AeroForce::linearize(std::span<const Vec3> x_cloth_m, std::span<const Vec3> v_cloth_m_s,
                           Definiteness how) {
+  // On the panels: C = W^T C_panels W for the cloth (W the sampling).
+  const std::span<const Vec3> x_m = on_panels(x_cloth_m, panel_x_);
+  const std::span<const Vec3> v_m_s = on_panels(v_cloth_m_s, panel_v_);
   damping_.resize(2 * std::size_t(lattice_.rows - 1) * std::size_t(lattice_.cols - 1));
   std::size_t t = 0;
   for_each_triangle([&](std::size_t a, std::size_t b, std::size_t c) {
     const Vec3 u =
         kThird * ((air_m_s_[a] + air_m_s_[b] + air_m_s_[c]) - (v_m_s[a] + v_m_s[b] + v_m_s[c]));
-    Mat3 block = (1.0 / 9.0) * triangle_aero_velocity_jacobian(x_m[a], x_m[b], x_m[c], u, wind_);
+    Mat3 block = (cell_scale_[t / 2] / 9.0) *
+                 triangle_aero_velocity_jacobian(x_m[a], x_m[b], x_m[c], u, wind_);
     if (how == Definiteness::kProjected) {
       const Mat3 symmetric = 0.5 * (block + block.transpose());
       Eigen::SelfAdjointEigenSolver<Mat3> eigen;
@@ -284,7 +357,12 @@ void AeroForce::linearize(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s
   });
 }
 
-void AeroForce::add_damping_product(std::span<const Vec3> dv_m_s, std::span<Vec3> out_n) const {
+void AeroForce::add_damping_product(std::span<const Vec3> dv_cloth_m_s,
+                                    std::span<Vec3> out_cloth_n) const {
+  const std::span<const Vec3> dv_m_s = on_panels(dv_cloth_m_s, panel_v_);
+  const bool same = panels_.same_lattice();
+  if (!same) std::fill(panel_out_.begin(), panel_out_.end(), Vec3::Zero());
+  const std::span<Vec3> out_n = same ? out_cloth_n : std::span<Vec3>(panel_out_);
   std::size_t t = 0;
   for_each_triangle([&](std::size_t a, std::size_t b, std::size_t c) {
     const Vec3 w = damping_[t++] * (dv_m_s[a] + dv_m_s[b] + dv_m_s[c]);
@@ -292,15 +370,43 @@ void AeroForce::add_damping_product(std::span<const Vec3> dv_m_s, std::span<Vec3
     out_n[b] += w;
     out_n[c] += w;
   });
+  if (same) return;
+  lanes::split(panel_out_, work_.f);
+  panels_.spread(work_.f, out_cloth_n);
 }
 
 void AeroForce::add_damping_diagonal(std::span<Mat3> diagonal_n_s_m) const {
   std::size_t t = 0;
+  if (panels_.same_lattice()) {
+    for_each_triangle([&](std::size_t a, std::size_t b, std::size_t c) {
+      const Mat3& block = damping_[t++];
+      diagonal_n_s_m[a] += block;
+      diagonal_n_s_m[b] += block;
+      diagonal_n_s_m[c] += block;
+    });
+    return;
+  }
+  // (W^T C W)_ii = sum over triangles of block (W_ai + W_bi + W_ci)^2, over the
+  // cloth nodes under the triangle's three hats.
+  const int cloth_cols = panels_.cloth_cols();
+  const int Kp = lattice_.cols;
   for_each_triangle([&](std::size_t a, std::size_t b, std::size_t c) {
     const Mat3& block = damping_[t++];
-    diagonal_n_s_m[a] += block;
-    diagonal_n_s_m[b] += block;
-    diagonal_n_s_m[c] += block;
+    const int rows[3] = {int(a) / Kp, int(b) / Kp, int(c) / Kp};
+    const int cols[3] = {int(a) % Kp, int(b) % Kp, int(c) % Kp};
+    const int row_lo = panels_.cloth_rows_of(*std::min_element(rows, rows + 3)).first;
+    const int row_hi = panels_.cloth_rows_of(*std::max_element(rows, rows + 3)).second;
+    const int col_lo = panels_.cloth_cols_of(*std::min_element(cols, cols + 3)).first;
+    const int col_hi = panels_.cloth_cols_of(*std::max_element(cols, cols + 3)).second;
+    for (int j = row_lo; j <= row_hi; ++j)
+      for (int k = col_lo; k <= col_hi; ++k) {
+        double share = 0.0;
+        for (int n = 0; n < 3; ++n)
+          share += panels_.row_weight(rows[n], j) * panels_.col_weight(cols[n], k);
+        if (share != 0.0)
+          diagonal_n_s_m[std::size_t(j) * std::size_t(cloth_cols) + std::size_t(k)] +=
+              (share * share) * block;
+      }
   });
 }
 

@@ -60,8 +60,25 @@ TEST(Metrics, ASineDrivenFlyEndGivesItsFrequency) {
     for (int t = 0; t < 300; ++t)
       z.push_back(0.2 + 0.1 * std::sin(2.0 * std::numbers::pi * hz * t / 30.0 + 0.4));
     EXPECT_NEAR(flap_frequency_hz(z, 30.0), hz, test::kSpectralRelTol * hz) << hz;
+    const FlapFrequency both = flap_frequency(z, 30.0);
+    EXPECT_NEAR(both.spectral_hz, hz, test::kSpectralRelTol * hz) << hz;
+    EXPECT_GE(both.crossings, 2 * int(hz * 300.0 / 30.0) - 1) << hz;
   }
   EXPECT_EQ(flap_frequency_hz(std::vector<double>(100, 1.0), 30.0), 0.0);  // no flapping
+}
+
+TEST(Metrics, AFlapFrequencyCountsTurnsOfAnyShape) {
+  // A 3 Hz flap of a skewed shape (the fly end snapping back, every other
+  // half period short) with a slow drift: its crossings still come 6 a second.
+  std::vector<double> z;
+  const double fps = 30.0;
+  for (int t = 0; t < 160; ++t) {
+    const double time = t / fps, phase = 2.0 * std::numbers::pi * 3.0 * time;
+    z.push_back(0.3 * std::sin(phase + 0.8 * std::sin(phase)) + 0.01 * time);
+  }
+  const FlapFrequency f = flap_frequency(z, fps);
+  EXPECT_NEAR(f.hz, 3.0, test::kSpectralRelTol * 3.0);
+  EXPECT_GE(f.crossings, 30);
 }
 
 TEST(Metrics, StrainDistributionFindsTheStretchedLink) {

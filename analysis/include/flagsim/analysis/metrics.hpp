@@ -9,10 +9,17 @@
 //    trajectories decorrelate;
 //  - mean_shape_rms: the RMS distance between the two time-averaged shapes over
 //    frames first..end;
-//  - flap_frequency_hz: the strongest frequency of a signal sampled at fps (the
-//    fly end's out-of-plane position): the peak of the periodogram of the
-//    mean-removed, Hann-windowed signal, refined by a parabola through the peak
-//    and its neighbours; 0 for a signal with no variation;
+//  - flap_frequency: the frequency of a signal sampled at fps (the fly end's
+//    out-of-plane position, once the flag flaps: the caller leaves the start
+//    out): the rate of its zero crossings about its mean,
+//    (n - 1) half periods between the first and the last of n crossings
+//    (linear between samples), and as a check the peak of its periodogram
+//    (mean removed, Hann window, refined by a parabola through the peak and
+//    its neighbours). A flapping flag's spectrum is broad: its peak can sit a
+//    bin or two from the rate at which the flag actually turns (up to 2.5 Hz
+//    apart on the full-lattice references of 2026-12), so the crossings are
+//    the figure. 0 for a signal with no variation; the spectral peak when the
+//    signal crosses its mean fewer than 3 times;
 //  - strain_distribution: max and 99th percentile of abs(d - S)/S over every
 //    row and column link of every frame;
 //  - wrinkle_wavelength_m: per row and frame, the out-of-plane offsets of the
@@ -45,6 +52,13 @@ double short_horizon_rms(const Frames& a, const Frames& b, int frames);
 
 double mean_shape_rms(const Frames& a, const Frames& b, int first_frame);
 
+struct FlapFrequency {
+  double hz = 0.0;           ///< zero-crossing rate (the spectral peak under 3 crossings)
+  double spectral_hz = 0.0;  ///< periodogram peak, the check
+  int crossings = 0;
+};
+FlapFrequency flap_frequency(std::span<const double> signal, double fps);
+/// flap_frequency(signal, fps).hz
 double flap_frequency_hz(std::span<const double> signal, double fps);
 
 struct StrainDistribution {

@@ -15,6 +15,19 @@
 // plate facing the flow gets 1/2 rho C_d A |u|^2, the textbook value. Each node
 // of the triangle receives a third of the force.
 //
+// Skin friction along the plate, from the flow's tangential part u_t = u - (u.n) n:
+//
+//   friction F_f = 1/2 rho C_f A |u_t| u_t                   (both faces: C_f counts both)
+//
+// tensions the cloth from the pole like a real flag's boundary layer.
+//
+// The triangles are those of the panel lattice (air_panels.hpp), not the
+// cloth's: the cloth is sampled onto panels of a fixed physical size
+// (wind.panel), the force computed there and spread back with the same
+// weights, so one shape and motion gets the same force field at every lattice
+// and no wave shorter than about two panels is driven. A cloth no finer than
+// the panels (the hybrid's coarse lattice) is its own panel lattice.
+//
 // The air's velocity comes from the WindField (mean, gusts, turbulence),
 // sampled at the nodes once per output frame (begin_frame) and averaged over
 // each triangle: gusts last seconds and turbulent eddies pass a node in about
@@ -31,6 +44,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "flagsim/coarse_physics/air_panels.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
 #include "flagsim/coarse_physics/wind_field.hpp"
@@ -69,29 +83,45 @@ class AeroForce final : public ForceTerm {
   void linearize(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s, Definiteness how) override;
   void add_damping_product(std::span<const Vec3> dv_m_s, std::span<Vec3> out_n) const override;
   void add_damping_diagonal(std::span<Mat3> diagonal_n_s_m) const override;
+  /// The panels the air sees the cloth on.
+  const AirPanels& panels() const { return panels_; }
 
  private:
   /// Calls visit(a, b, c) for every triangle, in the order of damping_.
   template <typename Visit>
   void for_each_triangle(Visit&& visit) const;
 
-  /// Positions, node velocities, air velocities and the forces being summed,
-  /// split into x, y, z arrays ([J*K] each); each triangle's third of its
-  /// force, [(J-1)(K-1)] per coordinate, for the upper (00, 01, 10) and lower
-  /// (01, 11, 10) triangle of a cell.
+  /// Positions, node velocities, air velocities and the forces being summed
+  /// at the panel nodes, split into x, y, z arrays ([panel nodes] each); each triangle's third of
+  /// its force, [(J-1)(K-1)] per coordinate, for the upper (00, 01, 10) and lower (01, 11, 10)
+  /// triangle of a cell.
   struct Workspace {
     std::vector<double> x[3], v[3], air[3], f[3], upper[3], lower[3];
   };
+  /// The cloth's `values` at the panel nodes ([panel nodes]); `values` itself
+  /// when the panels are the cloth's nodes.
+  std::span<const Vec3> on_panels(std::span<const Vec3> values, std::vector<Vec3>& out) const;
   /// One lattice row of cells (j, k) .. (j, K-2): their triangles' thirds.
   void row_thirds(int j) const;
   /// Every node's triangles' thirds added to work_.f, in the triangle loop's order.
   void gather_thirds() const;
 
-  const Lattice& lattice_;
+  AirPanels panels_;
+  const Lattice& lattice_;  ///< the panels' lattice: every loop below runs on it
+  std::size_t cloth_nodes_;
   Wind wind_;
   WindField field_;
-  std::vector<Vec3> air_m_s_;  ///< [J*K] air velocity at the nodes this frame
-  mutable Workspace work_;     ///< add_forces' arrays (no allocation per substep)
+  std::vector<Vec3> air_m_s_;  ///< [panel nodes] air velocity at the panel nodes this frame
+  mutable std::vector<Vec3> panel_x_, panel_v_,
+      panel_out_;           ///< [panel nodes] linearize's, products'
+  mutable Workspace work_;  ///< add_forces' arrays (no allocation per substep)
+  /// [(Jp-1)(Kp-1)] per panel cell: its rest area over that of its sampled
+  /// rest corners. A panel node on an edge samples the cloth under half a hat,
+  /// so it sits about a third of a panel inside the edge; the cell's force is
+  /// scaled back to the area it stands for (1 inside, and when the panels are
+  /// the cloth's nodes), so a uniform pressure gives the same force per area
+  /// on every cloth node and the whole flag its whole force.
+  std::vector<double> cell_scale_;
   std::vector<Mat3> damping_;  ///< [2 (J-1)(K-1)] C_t at the last linearization, N s/m
   double areal_density_kg_m2_;
   double cloth_speed_bound_m_s_;

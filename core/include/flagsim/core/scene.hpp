@@ -87,6 +87,14 @@ struct Wind {
   Vec3 velocity_m_s = Vec3::Zero();
   double drag = 1.0;  ///< normal-force coefficient of a flat plate
   double lift = 0.5;  ///< lift coefficient
+  /// Skin friction coefficient of both faces together, on the planform area:
+  /// tangential force 1/2 rho C_f A |u_t| u_t. A turbulent flat plate at the
+  /// default flag's Reynolds number (U L / nu ~ 1e6) has about 0.0047 a face;
+  /// a flapping boundary layer is thinner (Lighthill's drag increase), so 0.015.
+  double friction = 0.015;
+  /// Side of the panels the air sees the cloth on, m (air_panels.hpp): waves
+  /// shorter than about two panels are not driven, at any lattice.
+  double panel_m = 0.125;
   double air_density_kg_m3 = 1.225;
   std::optional<Gusts> gusts;
   std::optional<Turbulence> turbulence;

@@ -1,0 +1,98 @@
+#pragma once
+// The cloth as the air sees it: a lattice of panels of a fixed physical size,
+// whatever the cloth's own lattice.
+//
+// Why: the quasi-steady wind (aero_force.hpp) is local. Evaluated on every
+// triangle of the cloth, its lift (a pressure that grows with the surface's
+// slope to the flow) drives the shortest wave the lattice can carry at least as
+// hard as the flag-length wave, so the full-lattice flag's waves shrank with the
+// spacing (wavelength 1.04 -> 0.34 flag lengths from 17 x 25 to 129 x 193) and
+// had no converged answer. A real flag's pressure is set by the air around it,
+// which averages the surface over lengths of the order of the flag's height.
+// Here the wind is evaluated on a lattice of panels about `panel` metres wide
+// (wind.panel, default 0.125 m: 8 x 12 panels on the default 1.0 x 1.5 m flag),
+// whose nodes are weighted averages of the cloth's nodes, and each panel node's
+// force is spread back over the same cloth nodes with the same weights:
+//
+//   X_a = sum_i W_ai x_i,   V_a = sum_i W_ai v_i,   f_i += sum_a W_ai F_a,
+//   W_ai = integral(hat_a phi_i dA) / integral(hat_a dA)
+//
+// with hat_a the bilinear hat of panel node a (1 at a, 0 at its neighbours)
+// and phi_i the cloth node's own bilinear hat over the rest rectangle: X_a is
+// the hat-weighted mean of the piecewise-bilinear cloth, the same surface
+// average at every lattice (exact for an affine field, O(h^2) in the cloth's
+// spacing h otherwise). The force is the
+// transpose of the sampling, so it does the virtual work F . dX of the panels
+// (total force and moment are kept), and a uniform pressure p on the panels
+// gives p m_i (m_i = integral(phi_i dA), the node's area share) on every cloth
+// node: the same force per area at any resolution.
+// Waves shorter than about two panels are neither seen nor driven. The
+// weights are separable (row weights times column weights), so sampling and
+// spreading are two one-dimensional passes each, O(J K) whatever the panels.
+//
+// When the cloth is no finer than the panels (the hybrid's coarse lattice at
+// its default 9 x 13, any coarser one), the panels are the cloth's own nodes
+// and both maps are the identity: same_lattice() says so and the wind skips them.
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim::physics {
+
+class AirPanels {
+ public:
+  /// Panels of at most `panel_m` on a side over `cloth`'s rest rectangle.
+  AirPanels(const Lattice& cloth, double panel_m);
+
+  /// The panels' nodes (rows x cols, the cloth's rectangle); the cloth's own
+  /// lattice when same_lattice().
+  const Lattice& lattice() const { return panels_; }
+  bool same_lattice() const { return same_; }
+  int cloth_rows() const { return cloth_rows_; }
+  int cloth_cols() const { return cloth_cols_; }
+
+  /// to[axis][a] = sum_i W_ai from[i][axis]: the panel nodes' positions (or
+  /// velocities) from the cloth's; `to` holds panel-node count values per axis.
+  void sample(std::span<const Vec3> cloth, std::vector<double> (&to)[3]) const;
+  /// cloth[i] += sum_a W_ai from[axis][a]: panel-node forces onto the cloth.
+  void spread(const std::vector<double> (&from)[3], std::span<Vec3> cloth) const;
+  /// W_ai: cloth node i's weight in panel node a (W_ai = row_weight(pa, j) col_weight(qa, k)).
+  double weight(std::size_t panel_node, std::size_t cloth_node) const;
+  double row_weight(int panel_row, int cloth_row) const {
+    return row_table_[std::size_t(panel_row) * std::size_t(cloth_rows_) + std::size_t(cloth_row)];
+  }
+  double col_weight(int panel_col, int cloth_col) const {
+    return col_table_[std::size_t(panel_col) * std::size_t(cloth_cols_) + std::size_t(cloth_col)];
+  }
+  /// The cloth rows (columns) [first, last] with a weight in panel row (column) p.
+  std::pair<int, int> cloth_rows_of(int panel_row) const {
+    return rows_of_[std::size_t(panel_row)];
+  }
+  std::pair<int, int> cloth_cols_of(int panel_col) const {
+    return cols_of_[std::size_t(panel_col)];
+  }
+
+  /// One direction's weights: entry e has cloth index `cloth[e]`, panel index
+  /// `panel[e]` and weight `w[e]` (each cloth index in at most three entries,
+  /// sorted by cloth index; a panel index's weights sum to 1).
+  struct Axis {
+    std::vector<int> cloth, panel;
+    std::vector<double> w;
+  };
+  const Axis& row_weights() const { return rows_; }
+  const Axis& col_weights() const { return cols_; }
+
+ private:
+  Lattice panels_;
+  int cloth_rows_, cloth_cols_;
+  bool same_ = true;
+  Axis rows_, cols_;
+  std::vector<double> row_table_, col_table_;  ///< [panel x cloth] the same weights, dense
+  std::vector<std::pair<int, int>> rows_of_, cols_of_;
+  mutable std::vector<double> half_[3];  ///< [cloth rows x panel cols] between the two passes
+};
+
+}  // namespace flagsim::physics

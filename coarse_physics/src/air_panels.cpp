@@ -1,0 +1,141 @@
+#include "flagsim/coarse_physics/air_panels.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace flagsim::physics {
+namespace {
+
+/// Nodes of a side of `length_m` cut into panels of at most `panel_m`.
+int panel_nodes(double length_m, double panel_m) {
+  return 1 + std::max(1, int(std::ceil(length_m / panel_m - 1e-9)));
+}
+
+/// One direction's weights from `cloth_nodes` onto `panel_nodes` (fewer):
+/// w[p][i] = integral of hat_p(xi) phi_i(xi) over the side, normalised per
+/// panel node p, with hat_p the panel node's hat and phi_i the cloth node's
+/// (the piecewise-linear cloth between its nodes). Both are linear between
+/// the cloth's nodes and the panels' nodes, so Simpson's rule on each piece is
+/// exact: a panel node's sample of an affine field is the field's exact
+/// hat-weighted mean at every lattice (a trapezoid sum would move an edge
+/// panel node by about h^2 / (6 panel) with the cloth's spacing h).
+AirPanels::Axis axis_weights(int cloth_nodes, int panel_nodes) {
+  const double cloth_per_panel = double(cloth_nodes - 1) / double(panel_nodes - 1);
+  const auto hat = [](double at, int node) { return std::max(0.0, 1.0 - std::abs(at - node)); };
+  std::vector<double> table(std::size_t(panel_nodes) * std::size_t(cloth_nodes), 0.0);
+  const auto w = [&](int p, int i) -> double& {
+    return table[std::size_t(p) * std::size_t(cloth_nodes) + std::size_t(i)];
+  };
+  for (int i = 0; i + 1 < cloth_nodes; ++i) {
+    // The cloth element [i, i + 1], in panel units, cut at the panel nodes inside it.
+    const double a = double(i) / cloth_per_panel, b = double(i + 1) / cloth_per_panel;
+    std::vector<double> cuts = {a};
+    for (int p = int(std::floor(a)) + 1; double(p) < b; ++p) cuts.push_back(double(p));
+    cuts.push_back(b);
+    for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+      const double lo = cuts[c], hi = cuts[c + 1], length = hi - lo;
+      const int p0 = std::min(int(std::floor(0.5 * (lo + hi))), panel_nodes - 2);
+      for (const double at : {lo, 0.5 * (lo + hi), hi}) {
+        const double simpson = length * (at == 0.5 * (lo + hi) ? 4.0 : 1.0) / 6.0;
+        const double phi_right = (at - a) / (b - a);  // phi_{i+1}; phi_i = 1 - it
+        for (const int p : {p0, p0 + 1}) {
+          w(p, i) += simpson * hat(at, p) * (1.0 - phi_right);
+          w(p, i + 1) += simpson * hat(at, p) * phi_right;
+        }
+      }
+    }
+  }
+  std::vector<double> sum(std::size_t(panel_nodes), 0.0);
+  for (int p = 0; p < panel_nodes; ++p)
+    for (int i = 0; i < cloth_nodes; ++i) sum[std::size_t(p)] += w(p, i);
+  AirPanels::Axis axis;
+  for (int i = 0; i < cloth_nodes; ++i)
+    for (int p = 0; p < panel_nodes; ++p) {
+      if (w(p, i) <= 0.0) continue;
+      axis.cloth.push_back(i);
+      axis.panel.push_back(p);
+      axis.w.push_back(w(p, i) / sum[std::size_t(p)]);
+    }
+  return axis;
+}
+
+}  // namespace
+
+AirPanels::AirPanels(const Lattice& cloth, double panel_m)
+    : panels_(cloth), cloth_rows_(cloth.rows), cloth_cols_(cloth.cols) {
+  const double height = cloth.spacing_y_m * (cloth.rows - 1);
+  const double width = cloth.spacing_x_m * (cloth.cols - 1);
+  const int rows = panel_nodes(height, panel_m), cols = panel_nodes(width, panel_m);
+  // Every hat holds a cloth node when the cloth is at least as fine as the
+  // panels in both directions; otherwise the panels are the cloth's nodes.
+  if (rows >= cloth.rows || cols >= cloth.cols) return;
+  same_ = false;
+  panels_ = Lattice::rectangle(rows, cols, width, height, cloth.origin_m);
+  rows_ = axis_weights(cloth.rows, rows);
+  cols_ = axis_weights(cloth.cols, cols);
+  const auto tabulate = [](const Axis& axis, int panels, int cloth_nodes,
+                           std::vector<double>& table, std::vector<std::pair<int, int>>& range) {
+    table.assign(std::size_t(panels) * std::size_t(cloth_nodes), 0.0);
+    range.assign(std::size_t(panels), {cloth_nodes, -1});
+    for (std::size_t e = 0; e < axis.w.size(); ++e) {
+      const int p = axis.panel[e], i = axis.cloth[e];
+      table[std::size_t(p) * std::size_t(cloth_nodes) + std::size_t(i)] = axis.w[e];
+      range[std::size_t(p)] = {std::min(range[std::size_t(p)].first, i),
+                               std::max(range[std::size_t(p)].second, i)};
+    }
+  };
+  tabulate(rows_, rows, cloth.rows, row_table_, rows_of_);
+  tabulate(cols_, cols, cloth.cols, col_table_, cols_of_);
+  for (auto& h : half_) h.resize(std::size_t(cloth.rows) * std::size_t(cols));
+}
+
+void AirPanels::sample(std::span<const Vec3> cloth, std::vector<double> (&to)[3]) const {
+  assert(!same_);
+  const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
+  const std::size_t Kp = std::size_t(panels_.cols);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double>& half = half_[axis];
+    std::fill(half.begin(), half.end(), 0.0);
+    for (std::size_t j = 0; j < J; ++j)
+      for (std::size_t e = 0; e < cols_.w.size(); ++e)
+        half[j * Kp + std::size_t(cols_.panel[e])] +=
+            cols_.w[e] * cloth[j * K + std::size_t(cols_.cloth[e])][axis];
+    std::fill(to[axis].begin(), to[axis].begin() + std::ptrdiff_t(panels_.node_count()), 0.0);
+    for (std::size_t e = 0; e < rows_.w.size(); ++e) {
+      const double w = rows_.w[e];
+      double* out = to[axis].data() + std::size_t(rows_.panel[e]) * Kp;
+      const double* in = half.data() + std::size_t(rows_.cloth[e]) * Kp;
+      for (std::size_t q = 0; q < Kp; ++q) out[q] += w * in[q];
+    }
+  }
+}
+
+void AirPanels::spread(const std::vector<double> (&from)[3], std::span<Vec3> cloth) const {
+  assert(!same_);
+  const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
+  const std::size_t Kp = std::size_t(panels_.cols);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double>& half = half_[axis];
+    std::fill(half.begin(), half.end(), 0.0);
+    for (std::size_t e = 0; e < rows_.w.size(); ++e) {
+      const double w = rows_.w[e];
+      double* out = half.data() + std::size_t(rows_.cloth[e]) * Kp;
+      const double* in = from[axis].data() + std::size_t(rows_.panel[e]) * Kp;
+      for (std::size_t q = 0; q < Kp; ++q) out[q] += w * in[q];
+    }
+    for (std::size_t j = 0; j < J; ++j)
+      for (std::size_t e = 0; e < cols_.w.size(); ++e)
+        cloth[j * K + std::size_t(cols_.cloth[e])][axis] +=
+            cols_.w[e] * half[j * Kp + std::size_t(cols_.panel[e])];
+  }
+}
+
+double AirPanels::weight(std::size_t panel_node, std::size_t cloth_node) const {
+  if (same_) return panel_node == cloth_node ? 1.0 : 0.0;
+  const std::size_t K = std::size_t(cloth_cols_), Kp = std::size_t(panels_.cols);
+  return row_weight(int(panel_node / Kp), int(cloth_node / K)) *
+         col_weight(int(panel_node % Kp), int(cloth_node % K));
+}
+
+}  // namespace flagsim::physics
