@@ -93,19 +93,29 @@ AirPanels::AirPanels(const Lattice& cloth, double panel_m)
 void AirPanels::sample(std::span<const Vec3> cloth, std::vector<double> (&to)[3]) const {
   assert(!same_);
   const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
-  const std::size_t Kp = std::size_t(panels_.cols);
+  const std::size_t Kp = std::size_t(panels_.cols), Np = panels_.node_count();
+  // Along the rows (cloth columns -> panel columns), the three axes in one pass.
+  for (auto& h : half_) std::fill(h.begin(), h.end(), 0.0);
+  double *h0 = half_[0].data(), *h1 = half_[1].data(), *h2 = half_[2].data();
+  for (std::size_t j = 0; j < J; ++j) {
+    const Vec3* row = cloth.data() + j * K;
+    const std::size_t out = j * Kp;
+    for (std::size_t e = 0; e < cols_.w.size(); ++e) {
+      const double w = cols_.w[e];
+      const Vec3& c = row[cols_.cloth[e]];
+      const std::size_t q = out + std::size_t(cols_.panel[e]);
+      h0[q] += w * c.x();
+      h1[q] += w * c.y();
+      h2[q] += w * c.z();
+    }
+  }
+  // Down the columns (cloth rows -> panel rows).
   for (int axis = 0; axis < 3; ++axis) {
-    std::vector<double>& half = half_[axis];
-    std::fill(half.begin(), half.end(), 0.0);
-    for (std::size_t j = 0; j < J; ++j)
-      for (std::size_t e = 0; e < cols_.w.size(); ++e)
-        half[j * Kp + std::size_t(cols_.panel[e])] +=
-            cols_.w[e] * cloth[j * K + std::size_t(cols_.cloth[e])][axis];
-    std::fill(to[axis].begin(), to[axis].begin() + std::ptrdiff_t(panels_.node_count()), 0.0);
+    std::fill(to[axis].begin(), to[axis].begin() + std::ptrdiff_t(Np), 0.0);
     for (std::size_t e = 0; e < rows_.w.size(); ++e) {
       const double w = rows_.w[e];
       double* out = to[axis].data() + std::size_t(rows_.panel[e]) * Kp;
-      const double* in = half.data() + std::size_t(rows_.cloth[e]) * Kp;
+      const double* in = half_[axis].data() + std::size_t(rows_.cloth[e]) * Kp;
       for (std::size_t q = 0; q < Kp; ++q) out[q] += w * in[q];
     }
   }
@@ -115,6 +125,7 @@ void AirPanels::spread(const std::vector<double> (&from)[3], std::span<Vec3> clo
   assert(!same_);
   const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
   const std::size_t Kp = std::size_t(panels_.cols);
+  // Up the columns (panel rows -> cloth rows).
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<double>& half = half_[axis];
     std::fill(half.begin(), half.end(), 0.0);
@@ -124,10 +135,17 @@ void AirPanels::spread(const std::vector<double> (&from)[3], std::span<Vec3> clo
       const double* in = from[axis].data() + std::size_t(rows_.panel[e]) * Kp;
       for (std::size_t q = 0; q < Kp; ++q) out[q] += w * in[q];
     }
-    for (std::size_t j = 0; j < J; ++j)
-      for (std::size_t e = 0; e < cols_.w.size(); ++e)
-        cloth[j * K + std::size_t(cols_.cloth[e])][axis] +=
-            cols_.w[e] * half[j * Kp + std::size_t(cols_.panel[e])];
+  }
+  // Along the rows (panel columns -> cloth columns), the three axes in one pass.
+  const double *h0 = half_[0].data(), *h1 = half_[1].data(), *h2 = half_[2].data();
+  for (std::size_t j = 0; j < J; ++j) {
+    Vec3* row = cloth.data() + j * K;
+    const std::size_t in = j * Kp;
+    for (std::size_t e = 0; e < cols_.w.size(); ++e) {
+      const double w = cols_.w[e];
+      const std::size_t q = in + std::size_t(cols_.panel[e]);
+      row[cols_.cloth[e]] += Vec3(w * h0[q], w * h1[q], w * h2[q]);
+    }
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "flagsim/coarse_physics/bending_springs.hpp"
@@ -15,6 +16,13 @@
 
 namespace flagsim::physics {
 
+double xpbd_propagation_substep_s(const ClothModel& model, double stretch_modulus_n_m,
+                                  double areal_density_kg_m2, int iterations) {
+  const double spacing = std::min(model.lattice.spacing_x_m, model.lattice.spacing_y_m);
+  const double wave_speed = std::sqrt(stretch_modulus_n_m / areal_density_kg_m2);
+  return double(iterations) * spacing / wave_speed;
+}
+
 Xpbd::Xpbd(const Scene& scene)
     : model_(make_cloth_model(scene)),
       pins_(scene.pole),
@@ -27,6 +35,9 @@ Xpbd::Xpbd(const Scene& scene)
       frame_s_(1.0 / scene.fps),
       stable_substep_s_(explicit_stability_limit(model_, terms_)) {
   substeps_ = physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
+  const double propagation = xpbd_propagation_substep_s(
+      model_, scene.flag.stretch_modulus_n_m, scene.flag.areal_density_kg_m2, iterations_);
+  substeps_ = std::max(substeps_, int(std::ceil(frame_s_ / propagation - 1e-9)));
   const std::size_t n = model_.lattice.node_count();
   inverse_mass_.resize(n);
   for (std::size_t i = 0; i < n; ++i)

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <set>
 
+#include "flagsim/core/scene_parser.hpp"
 #include "scene_fixtures.hpp"
 #include "tolerances.hpp"
 
@@ -18,7 +19,9 @@ TEST(Xpbd, StaticSagConvergesToTheExplicitOneAsSubstepsGrow) {
   const Scene spring_damper = test::hanging_cloth(Backend::kSpringDamper, PinSet::kTop);
   const double spring = test::settled_sag(spring_damper);
   double previous_error = INFINITY;
-  for (int substeps : {2, 8, 32, 128}) {
+  // From 16: fewer are raised to 14, the substeps its links need
+  // (xpbd_propagation_substep_s: 0.125 m links, c = sqrt(60 / 0.2) m/s).
+  for (int substeps : {16, 32, 64, 128}) {
     Scene scene = test::hanging_cloth(Backend::kXpbd, PinSet::kTop);
     scene.solver.substeps = substeps;
     const double sag = test::settled_sag(scene);
@@ -29,6 +32,24 @@ TEST(Xpbd, StaticSagConvergesToTheExplicitOneAsSubstepsGrow) {
     previous_error = error;
   }
   EXPECT_LT(previous_error, test::kSagRelTol);
+}
+
+TEST(Xpbd, ChoosesEnoughSubstepsForItsLinksToKeepUpWithTheLoad) {
+  // One pass a substep carries a correction one link: the substep is at most
+  // iterations x dx / c, c = sqrt(Y / rho_A) = sqrt(2e4 / 0.2) = 316 m/s for the
+  // default fabric. At 13 substeps a frame (the scene's floor) the default
+  // flag diverged in frame 2 at 129 x 193.
+  const auto substeps = [](std::vector<std::string> overrides) {
+    overrides.emplace_back("scene.mode=\"xpbd\"");
+    return Xpbd(parse_scene(default_scene_toml(), kDefaultSceneName, overrides))
+        .substeps_per_frame();
+  };
+  const double c = std::sqrt(2.0e4 / 0.2), frame = 1.0 / 30.0;
+  EXPECT_EQ(substeps({}), int(std::ceil(frame / ((1.0 / 128.0) / c))));                    // 1350
+  EXPECT_EQ(substeps({"flag.fine=[33,49]"}), int(std::ceil(frame / ((1.0 / 32.0) / c))));  // 338
+  EXPECT_EQ(substeps({"flag.fine=[33,49]", "solver.iterations=2"}),
+            int(std::ceil(frame / ((2.0 / 32.0) / c))));
+  EXPECT_EQ(substeps({"flag.fine=[33,49]", "solver.substeps=2000"}), 2000);  // a floor
 }
 
 TEST(Xpbd, ColourGroupsShareNoNode) {
