@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Issue 35's benchmark: do the full-lattice references converge, do they obey
+# measured flag laws, and how far is the hybrid from the converged answer?
+#
+#   convergence  mass-spring and XPBD on the default scene at 33x49, 65x97 and
+#                129x193 (a shorter run there), SEEDS each: per lattice the
+#                mean +- seed std of the flap frequency f (zero crossings of
+#                the fly end), lambda/L, c/U, A/L, St, ms/frame, and the
+#                distance of the flap envelope (per-node std of the
+#                out-of-plane motion) and of the mean shape to the finest
+#                lattice, beside the seed-to-seed spread (bench/flag_metrics.py).
+#   hybrid       the default hybrid (129x193 dense) at coarse 5x7, 9x13 and
+#                17x25, SEEDS each, against the finest mass-spring group
+#                (run `convergence` first in the same OUT_DIR).
+#   laws         mass-spring at about 31 mm spacing and the hybrid at its
+#                0.125 m coarse cells, winds of 5, 10 and 20 m/s on the default
+#                1.5 x 1.0 m flag and aspect ratios H/L 0.5, 0.67 and 1 at
+#                10 m/s: f, lambda/L, c/U, A/L, St (Raynaud & Mulleners 2026:
+#                lambda/L ~ 1.87, c ~ U; St 0.2-0.4 for heavy flags).
+#
+# Measures from t = 1 s on (the flag starts flat). Runs are kept in OUT_DIR.
+# Usage: bench/flag_convergence.sh convergence|hybrid|laws|all OUT_DIR
+#   env FRAMES (default 121: 4 s), FRAMES_FINEST (91: 3 s at 129x193), SEEDS ("1 2 3")
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+what="${1:?convergence, hybrid, laws or all}"
+out="${2:?an output directory}"
+frames="${FRAMES:-121}"
+frames_finest="${FRAMES_FINEST:-91}"
+read -r -a seeds <<<"${SEEDS:-1 2 3}"
+mkdir -p "$out"
+metrics=(/usr/bin/python3 "$root/bench/flag_metrics.py")
+
+# run NAME FRAMES ARGS...: one run into OUT_DIR/NAME.h5 (kept when it exists).
+run() {
+  local name="$1" n="$2"
+  shift 2
+  if [ ! -f "$out/$name.h5" ]; then
+    "$root/build/flag-sim" run --quiet --frames "$n" -o "$out/$name.h5" "$@" >"$out/$name.log" 2>&1 || true
+  fi
+  echo "$name: $(tail -n 1 "$out/$name.log")" >&2
+}
+
+# files PREFIX: the seeds' files of one configuration.
+files() { for s in "${seeds[@]}"; do echo "$out/$1_s$s.h5"; done; }
+
+convergence() {
+  for integrator in mass-spring xpbd; do
+    local groups=()
+    for lattice in 33,49 65,97 129,193; do
+      local n="$frames" tag="${integrator}_${lattice/,/x}"
+      [ "$lattice" = 129,193 ] && n="$frames_finest"
+      for s in "${seeds[@]}"; do
+        run "${tag}_s$s" "$n" --mode "$integrator" --set "flag.fine=[$lattice]" --seed "$s"
+      done
+      # shellcheck disable=SC2207
+      groups+=(--group "$tag" $(files "$tag"))
+    done
+    echo "## $integrator: each lattice against ${integrator} at 129x193"
+    "${metrics[@]}" table "${groups[@]}" --markdown
+  done
+}
+
+hybrid() {
+  local groups=()
+  for coarse in 5,7 9,13 17,25; do
+    local tag="hybrid_${coarse/,/x}"
+    for s in "${seeds[@]}"; do
+      run "${tag}_s$s" "$frames" --set "flag.coarse=[$coarse]" --seed "$s"
+    done
+    # shellcheck disable=SC2207
+    groups+=(--group "$tag" $(files "$tag"))
+  done
+  # shellcheck disable=SC2207
+  groups+=(--group mass-spring_129x193 $(files mass-spring_129x193))
+  echo "## the hybrid by coarse lattice, against mass-spring at 129x193"
+  "${metrics[@]}" table "${groups[@]}" --markdown
+}
+
+laws() {
+  # name, flag size, full-lattice fine, hybrid fine, hybrid coarse, wind
+  local cases=(
+    "u05_ar067 1.5,1.0 33,49 129,193 9,13 5"
+    "u10_ar067 1.5,1.0 33,49 129,193 9,13 10"
+    "u20_ar067 1.5,1.0 33,49 129,193 9,13 20"
+    "u10_ar050 1.5,0.75 25,49 97,193 7,13 10"
+    "u10_ar100 1.5,1.5 49,49 193,193 13,13 10"
+  )
+  local groups=()
+  for c in "${cases[@]}"; do
+    read -r name size fine hfine hcoarse wind <<<"$c"
+    for s in "${seeds[@]}"; do
+      run "laws_ms_${name}_s$s" "$frames" --mode mass-spring --set "flag.size=[$size]" \
+        --set "flag.fine=[$fine]" --set "wind.velocity=[$wind,0,0]" --seed "$s"
+      run "laws_hy_${name}_s$s" "$frames" --set "flag.size=[$size]" --set "flag.fine=[$hfine]" \
+        --set "flag.coarse=[$hcoarse]" --set "wind.velocity=[$wind,0,0]" --seed "$s"
+    done
+    # shellcheck disable=SC2207
+    groups+=(--group "ms_$name" $(files "laws_ms_$name") --group "hy_$name" $(files "laws_hy_$name"))
+  done
+  echo "## flag laws (the distance columns compare unlike flags: read the first table)"
+  "${metrics[@]}" table "${groups[@]}" --markdown
+}
+
+case "$what" in
+  convergence) convergence ;;
+  hybrid) hybrid ;;
+  laws) laws ;;
+  all) convergence && hybrid && laws ;;
+  *) echo "flag_convergence.sh: unknown part $what (convergence, hybrid, laws, all)" >&2; exit 2 ;;
+esac
