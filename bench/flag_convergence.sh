@@ -3,7 +3,7 @@
 # measured flag laws, and how far is the hybrid from the converged answer?
 #
 #   convergence  mass-spring and XPBD on the default scene at 33x49, 65x97 and
-#                129x193 (a shorter run there), SEEDS each: per lattice the
+#                129x193, SEEDS each: per lattice the
 #                mean +- seed std of the flap frequency f (zero crossings of
 #                the fly end), lambda/L, c/U, A/L, St, ms/frame, and the
 #                distance of the flap envelope (per-node std of the
@@ -19,14 +19,19 @@
 #                lambda/L ~ 1.87, c ~ U; St 0.2-0.4 for heavy flags).
 #
 # Measures from t = 1 s on (the flag starts flat). Runs are kept in OUT_DIR.
+# Six seconds a run by default: the flap is irregular (one second of it reads
+# anywhere from 3 to 5 Hz), and 2 s of flapping at 129x193 read f 13% low and
+# the mean shape 70 mm off where 5 s agreed with 65x97 within the seed spread.
+# About 50 minutes for `convergence` on one core (mass-spring at 129x193: 2.9 s
+# a frame), 3 for `laws`, 1 for `hybrid`.
 # Usage: bench/flag_convergence.sh convergence|hybrid|laws|all OUT_DIR
-#   env FRAMES (default 121: 4 s), FRAMES_FINEST (91: 3 s at 129x193), SEEDS ("1 2 3")
+#   env FRAMES (default 181: 6 s), FRAMES_FINEST (181, at 129x193), SEEDS ("1 2 3")
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 what="${1:?convergence, hybrid, laws or all}"
 out="${2:?an output directory}"
-frames="${FRAMES:-121}"
-frames_finest="${FRAMES_FINEST:-91}"
+frames="${FRAMES:-181}"
+frames_finest="${FRAMES_FINEST:-181}"
 read -r -a seeds <<<"${SEEDS:-1 2 3}"
 mkdir -p "$out"
 metrics=(/usr/bin/python3 "$root/bench/flag_metrics.py")

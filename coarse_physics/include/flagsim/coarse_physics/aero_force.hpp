@@ -70,6 +70,8 @@ class AeroForce final : public ForceTerm {
   ///        motion, flapping), used only for the stability bound
   AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t seed,
             double areal_density_kg_m2, double cloth_speed_bound_m_s);
+  AeroForce(const AeroForce&) = delete;  // lattice_ refers to panels_' own lattice
+  AeroForce& operator=(const AeroForce&) = delete;
   std::string_view name() const override { return "wind"; }
   void begin_frame(double time_s, std::span<const Vec3> x_m) override;
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
