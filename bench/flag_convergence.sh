@@ -12,6 +12,9 @@
 #   hybrid       the default hybrid (129x193 dense) at coarse 5x7, 9x13 and
 #                17x25, SEEDS each, against the finest mass-spring group
 #                (run `convergence` first in the same OUT_DIR).
+#   plot         OUT_DIR/accuracy_cost.png: the hybrid lattices and the coarser
+#                references against mass-spring at 129x193, each figure's
+#                error over its ms/frame (after convergence and hybrid).
 #   laws         mass-spring at about 31 mm spacing and the hybrid at its
 #                0.125 m coarse cells, winds of 5, 10 and 20 m/s on the default
 #                1.5 x 1.0 m flag and aspect ratios H/L 0.5, 0.67 and 1 at
@@ -24,11 +27,11 @@
 # the mean shape 70 mm off where 5 s agreed with 65x97 within the seed spread.
 # About 50 minutes for `convergence` on one core (mass-spring at 129x193: 2.9 s
 # a frame), 3 for `laws`, 1 for `hybrid`.
-# Usage: bench/flag_convergence.sh convergence|hybrid|laws|all OUT_DIR
+# Usage: bench/flag_convergence.sh convergence|hybrid|laws|plot|all OUT_DIR
 #   env FRAMES (default 181: 6 s), FRAMES_FINEST (181, at 129x193), SEEDS ("1 2 3")
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-what="${1:?convergence, hybrid, laws or all}"
+what="${1:?convergence, hybrid, laws, plot or all}"
 out="${2:?an output directory}"
 frames="${FRAMES:-181}"
 frames_finest="${FRAMES_FINEST:-181}"
@@ -107,10 +110,24 @@ laws() {
   "${metrics[@]}" table "${groups[@]}" --markdown
 }
 
+# What accuracy costs: the hybrid lattices and the coarser references against
+# mass-spring at 129x193, error over ms/frame (after `convergence` and `hybrid`).
+plot() {
+  local groups=()
+  for tag in hybrid_5x7 hybrid_9x13 hybrid_17x25 mass-spring_33x49 mass-spring_65x97 xpbd_33x49 \
+    xpbd_65x97 xpbd_129x193 mass-spring_129x193; do
+    # shellcheck disable=SC2207
+    groups+=(--group "$tag" $(files "$tag"))
+  done
+  "${metrics[@]}" plot "${groups[@]}" --reference mass-spring_129x193 -o "$out/accuracy_cost.png"
+  echo "wrote $out/accuracy_cost.png"
+}
+
 case "$what" in
   convergence) convergence ;;
   hybrid) hybrid ;;
   laws) laws ;;
-  all) convergence && hybrid && laws ;;
-  *) echo "flag_convergence.sh: unknown part $what (convergence, hybrid, laws, all)" >&2; exit 2 ;;
+  plot) plot ;;
+  all) convergence && hybrid && laws && plot ;;
+  *) echo "flag_convergence.sh: unknown part $what (convergence, hybrid, laws, plot, all)" >&2; exit 2 ;;
 esac

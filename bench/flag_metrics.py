@@ -5,6 +5,7 @@ Usage:
   flag_metrics.py one FILE [--t0 T] [--json]
   flag_metrics.py table --group LABEL FILE [FILE...] [--group LABEL FILE...] [--reference LABEL]
                   [--t0 T] [--markdown | --json]
+  flag_metrics.py plot --group LABEL FILE... [--group ...] [--reference LABEL] -o IMAGE
   flag_metrics.py --selftest
 
 Needs h5py and numpy (/usr/bin/python3 on the project machines).
@@ -508,11 +509,45 @@ def selftest():
 
 # ----------------------------------------------------------------------------------------------
 
+def plot_cost(groups, path):
+    """What accuracy costs: each group's error against the reference (frequency, and the mean
+    shape's and the envelope's RMS distance with the seed floor as a bar) over its ms/frame."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
+    ref = next(g for g in groups if g["is_reference"])
+    for g in groups:
+        if g["is_reference"] or not math.isfinite(g["ms_frame"]):
+            continue
+        kind = "o" if g["label"].startswith("hybrid") else "s"
+        f_err = 100.0 * g["rel_f"]
+        f_bar = 100.0 * (g["f_std"] or 0.0) / ref["f"]
+        for ax, y, bar in ((axes[0], f_err, f_bar), (axes[1], g["shape_mm"], g["shape_floor"]),
+                           (axes[2], g["env_mm"], g["env_floor"])):
+            ax.errorbar(g["ms_frame"], y, yerr=bar if math.isfinite(bar) else None, fmt=kind,
+                        capsize=3)
+            ax.annotate(g["label"], (g["ms_frame"], y), textcoords="offset points", xytext=(4, 4),
+                        fontsize=7)
+    titles = (f"flap frequency error, % (bar: seed std)", "mean shape RMS, mm (bar: seed floor)",
+              "flap envelope RMS, mm (bar: seed floor)")
+    for ax, title in zip(axes, titles):
+        ax.set_xscale("log")
+        ax.set_xlabel("ms per frame (one core)")
+        ax.set_title(title, fontsize=9)
+        ax.set_ylim(bottom=0)
+        ax.grid(alpha=0.3)
+    fig.suptitle(f"against {ref['label']} ({ref['N']} seeds, {ref['ms_frame']:.0f} ms/frame); "
+                 "circles: hybrid, squares: full-lattice references", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     if "--selftest" in argv:
         sys.exit(0 if selftest() else 1)
-    if not argv or argv[0] not in ("one", "table"):
+    if not argv or argv[0] not in ("one", "table", "plot"):
         sys.exit(__doc__)
     cmd, rest = argv[0], argv[1:]
     if cmd == "one":
@@ -538,12 +573,15 @@ def main(argv=None):
         else:
             opts.append(rest[i])
             i += 1
-    ap = argparse.ArgumentParser(prog="flag_metrics.py table")
+    ap = argparse.ArgumentParser(prog=f"flag_metrics.py {cmd}")
     ap.add_argument("--reference")
     ap.add_argument("--t0", type=float, default=1.0)
     ap.add_argument("--markdown", action="store_true")
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("-o", dest="output", help="plot: the image to write (.png, .svg, .pdf)")
     a = ap.parse_args(opts)
+    if cmd == "plot" and not a.output:
+        sys.exit("plot needs -o IMAGE")
     if not groups_in or any(not files for _, files in groups_in):
         sys.exit("table needs --group LABEL FILE [FILE...] (each with at least one file)")
     if a.reference and a.reference not in [l for l, _ in groups_in]:
@@ -551,6 +589,9 @@ def main(argv=None):
     groups = [group_stats(label, [measure_file(p, a.t0) for p in files])
               for label, files in groups_in]
     compare(groups, a.reference)
+    if cmd == "plot":
+        plot_cost(groups, a.output)
+        return
     if a.json:
         print(json.dumps([_scalar_json(g) for g in groups], indent=1))
     else:
