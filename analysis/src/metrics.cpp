@@ -85,17 +85,16 @@ double mean_shape_rms(const Frames& a, const Frames& b, int first_frame) {
 
 FlapFrequency flap_frequency(std::span<const double> signal, double fps) {
   FlapFrequency result;
-  const std::span<const double> kept = signal;
-  const double bin = peak_bin(kept);
+  const double bin = peak_bin(signal);
   if (bin < 0.0) return result;  // no variation: no flapping
-  result.spectral_hz = bin * fps / double(kept.size());
+  result.spectral_hz = bin * fps / double(signal.size());
   double mean = 0.0;
-  for (double v : kept) mean += v;
-  mean /= double(kept.size());
+  for (double v : signal) mean += v;
+  mean /= double(signal.size());
   // Crossing times (in samples), linear between the two samples either side.
   std::vector<double> crossings;
-  for (std::size_t i = 0; i + 1 < kept.size(); ++i) {
-    const double a = kept[i] - mean, b = kept[i + 1] - mean;
+  for (std::size_t i = 0; i + 1 < signal.size(); ++i) {
+    const double a = signal[i] - mean, b = signal[i + 1] - mean;
     if ((a < 0.0) != (b < 0.0)) crossings.push_back(double(i) + a / (a - b));
   }
   result.crossings = int(crossings.size());

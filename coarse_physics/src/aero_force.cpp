@@ -411,10 +411,11 @@ void AeroForce::add_damping_diagonal(std::span<Mat3> diagonal_n_s_m) const {
 }
 
 double AeroForce::velocity_rate_bound() const {
-  // |dF/dv| of a node ~ (its share of area) rho (C_d + C_l) |u|, over its mass
-  // (density * area): rho (C_d + C_l) |u| / density, with |u| <= |wind| + cloth speed.
+  // |dF/dv| of a node ~ (its share of area) rho (C_d + C_l + C_f) |u|, over its mass
+  // (density * area): rho (C_d + C_l + C_f) |u| / density, with |u| <= |wind| + cloth speed.
+  // On panels the node's share of each panel's force is its share of the area: the same bound.
   const double relative_speed = field_.speed_bound_m_s() + cloth_speed_bound_m_s_;
-  return wind_.air_density_kg_m3 * (wind_.drag + wind_.lift) * relative_speed /
+  return wind_.air_density_kg_m3 * (wind_.drag + wind_.lift + wind_.friction) * relative_speed /
          areal_density_kg_m2_;
 }
 

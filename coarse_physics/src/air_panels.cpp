@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 namespace flagsim::physics {
 namespace {
@@ -46,17 +47,27 @@ AirPanels::Axis axis_weights(int cloth_nodes, int panel_nodes) {
       }
     }
   }
-  std::vector<double> sum(std::size_t(panel_nodes), 0.0);
-  for (int p = 0; p < panel_nodes; ++p)
-    for (int i = 0; i < cloth_nodes; ++i) sum[std::size_t(p)] += w(p, i);
   AirPanels::Axis axis;
+  axis.range.assign(std::size_t(panel_nodes), {cloth_nodes, -1});
+  for (int p = 0; p < panel_nodes; ++p) {
+    double sum = 0.0;
+    for (int i = 0; i < cloth_nodes; ++i) sum += w(p, i);
+    for (int i = 0; i < cloth_nodes; ++i) {
+      w(p, i) /= sum;
+      if (w(p, i) <= 0.0) continue;
+      auto& [first, last] = axis.range[std::size_t(p)];
+      first = std::min(first, i);
+      last = std::max(last, i);
+    }
+  }
   for (int i = 0; i < cloth_nodes; ++i)
     for (int p = 0; p < panel_nodes; ++p) {
       if (w(p, i) <= 0.0) continue;
       axis.cloth.push_back(i);
       axis.panel.push_back(p);
-      axis.w.push_back(w(p, i) / sum[std::size_t(p)]);
+      axis.w.push_back(w(p, i));
     }
+  axis.table = std::move(table);
   return axis;
 }
 
@@ -74,19 +85,6 @@ AirPanels::AirPanels(const Lattice& cloth, double panel_m)
   panels_ = Lattice::rectangle(rows, cols, width, height, cloth.origin_m);
   rows_ = axis_weights(cloth.rows, rows);
   cols_ = axis_weights(cloth.cols, cols);
-  const auto tabulate = [](const Axis& axis, int panels, int cloth_nodes,
-                           std::vector<double>& table, std::vector<std::pair<int, int>>& range) {
-    table.assign(std::size_t(panels) * std::size_t(cloth_nodes), 0.0);
-    range.assign(std::size_t(panels), {cloth_nodes, -1});
-    for (std::size_t e = 0; e < axis.w.size(); ++e) {
-      const int p = axis.panel[e], i = axis.cloth[e];
-      table[std::size_t(p) * std::size_t(cloth_nodes) + std::size_t(i)] = axis.w[e];
-      range[std::size_t(p)] = {std::min(range[std::size_t(p)].first, i),
-                               std::max(range[std::size_t(p)].second, i)};
-    }
-  };
-  tabulate(rows_, rows, cloth.rows, row_table_, rows_of_);
-  tabulate(cols_, cols, cloth.cols, col_table_, cols_of_);
   for (auto& h : half_) h.resize(std::size_t(cloth.rows) * std::size_t(cols));
 }
 

@@ -51,7 +51,6 @@ class AirPanels {
   /// lattice when same_lattice().
   const Lattice& lattice() const { return panels_; }
   bool same_lattice() const { return same_; }
-  int cloth_rows() const { return cloth_rows_; }
   int cloth_cols() const { return cloth_cols_; }
 
   /// to[axis][a] = sum_i W_ai from[i][axis]: the panel nodes' positions (or
@@ -62,36 +61,35 @@ class AirPanels {
   /// W_ai: cloth node i's weight in panel node a (W_ai = row_weight(pa, j) col_weight(qa, k)).
   double weight(std::size_t panel_node, std::size_t cloth_node) const;
   double row_weight(int panel_row, int cloth_row) const {
-    return row_table_[std::size_t(panel_row) * std::size_t(cloth_rows_) + std::size_t(cloth_row)];
+    return rows_.table[std::size_t(panel_row) * std::size_t(cloth_rows_) + std::size_t(cloth_row)];
   }
   double col_weight(int panel_col, int cloth_col) const {
-    return col_table_[std::size_t(panel_col) * std::size_t(cloth_cols_) + std::size_t(cloth_col)];
+    return cols_.table[std::size_t(panel_col) * std::size_t(cloth_cols_) + std::size_t(cloth_col)];
   }
   /// The cloth rows (columns) [first, last] with a weight in panel row (column) p.
   std::pair<int, int> cloth_rows_of(int panel_row) const {
-    return rows_of_[std::size_t(panel_row)];
+    return rows_.range[std::size_t(panel_row)];
   }
   std::pair<int, int> cloth_cols_of(int panel_col) const {
-    return cols_of_[std::size_t(panel_col)];
+    return cols_.range[std::size_t(panel_col)];
   }
 
-  /// One direction's weights: entry e has cloth index `cloth[e]`, panel index
-  /// `panel[e]` and weight `w[e]` (each cloth index in at most three entries,
-  /// sorted by cloth index; a panel index's weights sum to 1).
+  /// One direction's weights, normalised per panel index: `table` dense
+  /// [panel x cloth]; the same non-zero weights as entries e (cloth index
+  /// `cloth[e]`, panel index `panel[e]`, weight `w[e]`; each cloth index in at
+  /// most three entries, sorted by cloth index) for the two passes; `range[p]`
+  /// the cloth indices [first, last] with a weight in panel index p.
   struct Axis {
     std::vector<int> cloth, panel;
-    std::vector<double> w;
+    std::vector<double> w, table;
+    std::vector<std::pair<int, int>> range;
   };
-  const Axis& row_weights() const { return rows_; }
-  const Axis& col_weights() const { return cols_; }
 
  private:
   Lattice panels_;
   int cloth_rows_, cloth_cols_;
   bool same_ = true;
   Axis rows_, cols_;
-  std::vector<double> row_table_, col_table_;  ///< [panel x cloth] the same weights, dense
-  std::vector<std::pair<int, int>> rows_of_, cols_of_;
   mutable std::vector<double> half_[3];  ///< [cloth rows x panel cols] between the two passes
 };
 
