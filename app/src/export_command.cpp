@@ -6,11 +6,11 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <optional>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "flagsim/core/staged_file.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/data/mesh_export.hpp"
 #include "flagsim/data/output_reader.hpp"
@@ -51,13 +51,6 @@ class StagedFiles {
   std::vector<std::string> finals_, partials_;
 };
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out) throw IoError(fmt::format("{}: writing failed (disk full?)", path));
-}
-
 void check_interrupt(int done, int total, const std::string& output) {
   if (stop_requested())
     throw Interrupted(
@@ -73,7 +66,14 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
   const fs::path target(output);
   const std::string extension = target.extension().string();
   ExportKind kind;
-  if (output.back() == '/' || fs::is_directory(target))
+  std::error_code no_such;  // set when the target does not exist yet
+  const bool directory = fs::is_directory(target, no_such);
+  if (directory && output.back() != '/' && (extension == ".obj" || extension == ".pc2"))
+    throw UserError(fmt::format(
+        "-o {}: is a directory; give another name for the {} file, or {}/ (a trailing '/') for "
+        "an OBJ per frame in it",
+        printable(output), extension, printable(output)));
+  if (output.back() == '/' || directory)
     kind = ExportKind::kObjPerFrame;
   else if (extension == ".pc2")
     kind = ExportKind::kPointCache;
@@ -89,9 +89,8 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
                                    : output;
   FileRoles files;
   files.input(h5_path, "the input");
-  if (kind == ExportKind::kObjPerFrame) {
-    files.output(output, "-o");
-  } else {
+  files.check();  // the input: a regular file, before it is opened
+  if (kind != ExportKind::kObjPerFrame) {
     files.output(output, "-o");
     files.output(output + ".partial", "-o (while written)");
     if (kind == ExportKind::kPointCache) {
@@ -99,7 +98,6 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
       files.output(obj_path + ".partial", "-o (its OBJ, while written)");
     }
   }
-  files.check();
   const std::optional<std::pair<int, int>> range =
       options.frames ? std::optional(parse_frame_range(*options.frames)) : std::nullopt;
 
@@ -107,6 +105,15 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
   const int rows = reader.rows(), cols = reader.cols();
   const auto [first, last] =
       resolve_frame_range(range.value_or(std::pair{0, -1}), reader.frame_count(), h5_path);
+  if (kind == ExportKind::kObjPerFrame) {  // every file it will write, however the names fall
+    std::vector<std::string> names;
+    for (int t = first; t < last; ++t) {
+      names.push_back(fmt::format("frame_{:05d}.obj", t));
+      names.push_back(fmt::format("frame_{:05d}.obj.partial", t));
+    }
+    files.outputs_in(output, names, "-o");
+  }
+  files.check();
   const int count = kind == ExportKind::kObj ? 1 : last - first;
   const std::string comment =
       fmt::format("flag-sim {} of {}, frame {{}} (t = {{:.6g}} s)", reader.attribute("version"),
@@ -133,7 +140,7 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
     // Frames written so far are kept when a signal stops the export (as render's PNGs).
     for (int t = first; t < last; ++t) {
       check_interrupt(t - first, count, output);
-      write_text((target / fmt::format("frame_{:05d}.obj", t)).string(), obj_of(t));
+      write_file_whole((target / fmt::format("frame_{:05d}.obj", t)).string(), obj_of(t));
     }
     written = fmt::format("{}frame_{:05d}.obj ... frame_{:05d}.obj", (target / "").string(), first,
                           last - 1);
@@ -148,8 +155,10 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
       }
       cache.finish();
     }
-    write_text(staged.stage(obj_path), obj_of(first));
+    StagedFile obj(obj_path);  // checked writes, under OBJ.partial until both are whole
+    obj.write(obj_of(first));
     staged.commit();
+    obj.commit();
     written = kind == ExportKind::kPointCache ? fmt::format("{} and {}", output, obj_path) : output;
   }
   fmt::print("exported {} frame{} of {} x {} nodes -> {}\n", count, count == 1 ? "" : "s", rows,

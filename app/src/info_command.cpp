@@ -6,10 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/message.hpp"
+#include "flagsim/data/isolated_read.hpp"
 #include "flagsim/data/output_reader.hpp"
 
 namespace flagsim::app {
@@ -95,27 +98,40 @@ RunSummary summarise(const std::string& path) {
   return s;
 }
 
-void print_text(const RunSummary& s) {
-  fmt::print("file      {}\n", s.file);
-  fmt::print("status    {}\n", s.status);
-  if (!s.reason.empty()) fmt::print("reason    {}\n", s.reason);
-  fmt::print("mode      {}\n", s.mode);
-  fmt::print("lattice   {} x {} ({} nodes)\n", s.rows, s.cols, s.rows * s.cols);
+// Everything a file says, as valid UTF-8 (for JSON) or also without control
+// characters (for a terminal): a file cannot recolour the screen or break a parser.
+RunSummary cleaned(RunSummary s, std::string (*clean)(const std::string&)) {
+  for (std::string* text : {&s.file, &s.status, &s.reason, &s.mode, &s.effects, &s.version})
+    *text = clean(*text);
+  for (auto& stage : s.stage_ms) stage.first = clean(stage.first);
+  return s;
+}
+
+std::string text_of(const RunSummary& s) {
+  std::string text;
+  const auto out = std::back_inserter(text);
+  fmt::format_to(out, "file      {}\n", s.file);
+  fmt::format_to(out, "status    {}\n", s.status);
+  if (!s.reason.empty()) fmt::format_to(out, "reason    {}\n", s.reason);
+  fmt::format_to(out, "mode      {}\n", s.mode);
+  fmt::format_to(out, "lattice   {} x {} ({} nodes)\n", s.rows, s.cols, s.rows * s.cols);
   if (s.frames == 0)
-    fmt::print("frames    0\n");
+    fmt::format_to(out, "frames    0\n");
   else
-    fmt::print("frames    {}, t = {:.4g} .. {:.4g} s\n", s.frames, s.t_first_s, s.t_last_s);
-  fmt::print("effects   {}\n", s.effects);
-  fmt::print("seed      {}\n", s.seed);
-  fmt::print("version   {}\n", s.version);
+    fmt::format_to(out, "frames    {}, t = {:.4g} .. {:.4g} s\n", s.frames, s.t_first_s,
+                   s.t_last_s);
+  fmt::format_to(out, "effects   {}\n", s.effects);
+  fmt::format_to(out, "seed      {}\n", s.seed);
+  fmt::format_to(out, "version   {}\n", s.version);
   if (s.substeps > 0)
-    fmt::print("substeps  {:.0f} per frame of {:.3g} s (stability limit {:.3g} s)\n", s.substeps,
-               s.substep_s, s.stable_substep_s);
+    fmt::format_to(out, "substeps  {:.0f} per frame of {:.3g} s (stability limit {:.3g} s)\n",
+                   s.substeps, s.substep_s, s.stable_substep_s);
   if (s.has_strain)
-    fmt::print("strain    max {:.3f}%, mean {:.3f}% (over all frames)\n", 100.0 * s.max_strain,
-               100.0 * s.mean_strain);
+    fmt::format_to(out, "strain    max {:.3f}%, mean {:.3f}% (over all frames)\n",
+                   100.0 * s.max_strain, 100.0 * s.mean_strain);
   if (s.has_infill)
-    fmt::print(
+    fmt::format_to(
+        out,
         "infill    converged in {} of {} frames, {:.0f} iterations in the median frame, coarse "
         "counterparts {:.1f} mm off (median), {:.1f} mm (max)\n",
         s.converged_frames, s.infill_frames, s.median_iterations, 1e3 * s.median_offset_m,
@@ -124,8 +140,9 @@ void print_text(const RunSummary& s) {
     std::string split;
     for (const auto& [name, ms] : s.stage_ms)
       split += fmt::format("{}{} {:.2f}", split.empty() ? "" : ", ", name, ms);
-    fmt::print("timing    {:.2f} ms/frame ({})\n", s.ms_per_frame, split);
+    fmt::format_to(out, "timing    {:.2f} ms/frame ({})\n", s.ms_per_frame, split);
   }
+  return text;
 }
 
 // A JSON string literal (RFC 8259: quote, backslash and control characters escaped).
@@ -147,7 +164,7 @@ std::string json_number(double x) {
   return std::isfinite(x) ? fmt::format("{}", x) : "null";
 }
 
-void print_json(const RunSummary& s) {
+std::string json_of(const RunSummary& s) {
   std::vector<std::string> effects;
   std::stringstream list(s.effects);
   for (std::string effect; std::getline(list, effect, ',');)
@@ -189,17 +206,19 @@ void print_json(const RunSummary& s) {
     field("ms_per_frame", json_number(s.ms_per_frame));
     field("stage_ms", fmt::format("{{{}}}", fmt::join(stages, ", ")));
   }
-  fmt::print("{}}}\n", out);
+  return out + "}\n";
 }
 
 }  // namespace
 
 int info_command(const std::string& path, bool json) {
-  const RunSummary summary = summarise(path);
-  if (json)
-    print_json(summary);
-  else
-    print_text(summary);
+  // Read and formatted in a child, printed here (data/isolated_read.hpp): a
+  // damaged file that crashes HDF5 is one error line, never a crash.
+  const std::string text = data::run_isolated(path, [&path, json] {
+    const RunSummary summary = summarise(path);
+    return json ? json_of(cleaned(summary, valid_utf8)) : text_of(cleaned(summary, terminal_safe));
+  });
+  fmt::print("{}", text);
   return int(ExitCode::kSuccess);
 }
 

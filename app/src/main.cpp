@@ -5,8 +5,15 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <regex>
 #include <string_view>
 
 #include "compare_command.hpp"
@@ -34,12 +41,52 @@ int fail(ExitCode code, const std::string& message) {
   return int(code);
 }
 
+// Integer options in plain decimal: CLI11 would read "0x10" as 16 and "0b1" as 1.
+const CLI::Validator kDecimal(
+    [](const std::string& text) {
+      const std::size_t sign = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+      const bool digits = text.size() > sign && text.size() <= 19 &&
+                          std::all_of(text.begin() + long(sign), text.end(),
+                                      [](char c) { return c >= '0' && c <= '9'; });
+      return digits ? std::string()
+                    : "expected a whole number in decimal digits, got '" +
+                          flagsim::printable(text) + "'";
+    },
+    "INT");
+
+// Real-valued options as numbers are written (digits, a point, an exponent), not
+// hexadecimal floats, "inf" or "nan".
+const CLI::Validator kNumber(
+    [](const std::string& text) {
+      static const std::regex number(R"(^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$)");
+      return std::regex_match(text, number)
+                 ? std::string()
+                 : "expected a number, e.g. 0.5, got '" + flagsim::printable(text) + "'";
+    },
+    "NUMBER");
+
+// The argument that is empty ('' or --option=), with the option it belongs
+// to; nullopt when none is. An empty value is never what a user meant: an
+// empty -o or --frames was silently ignored, an empty scene path read the
+// default scene.
+std::optional<std::string> empty_argument(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg.empty())
+      return i > 1 && argv[i - 1][0] == '-' ? fmt::format("{} ''", flagsim::printable(argv[i - 1]))
+                                            : fmt::format("argument {} ('')", i);
+    if (arg.size() > 2 && arg.substr(0, 2) == "--" && arg.back() == '=')
+      return flagsim::printable(std::string(arg));
+  }
+  return std::nullopt;
+}
+
 // The options compare and sweep share: the scene, its frames and overrides, the horizon.
 void add_measure_options(CLI::App* cmd, std::string& scene, std::optional<long long>& frames,
                          double& horizon_s, std::vector<std::string>& sets) {
   cmd->add_option("scene", scene, "Scene file (TOML; default: the embedded one)");
-  cmd->add_option("--frames", frames, "Frames per run, including t = 0");
-  cmd->add_option("--horizon", horizon_s, "Short horizon, s (default 0.5)");
+  cmd->add_option("--frames", frames, "Frames per run, including t = 0")->check(kDecimal);
+  cmd->add_option("--horizon", horizon_s, "Short horizon, s (default 0.5)")->check(kNumber);
   cmd->add_option("--set", sets, "Override a scene key: KEY=VALUE (TOML value)");
 }
 
@@ -66,7 +113,8 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)");
   run_cmd->add_option("-o,--output", run.output_path, "Output file (.h5)");
   run_cmd->add_option("--mode", run.mode, "Override scene.mode");
-  run_cmd->add_option("--frames", run.frames, "Number of frames to write, including t = 0");
+  run_cmd->add_option("--frames", run.frames, "Number of frames to write, including t = 0")
+      ->check(kDecimal);
   run_cmd->add_option("--seed", run.seed, "Override scene.seed");
   run_cmd->add_option("--set", run.sets, "Override a scene key: KEY=VALUE (TOML value)");
   run_cmd->add_option("--render", run.render,
@@ -160,8 +208,10 @@ int run_main(int argc, char** argv) {
                         "Coarse physics side by side: spring-damper,bullet,implicit,xpbd");
   sweep_cmd->add_option("-o,--output", sweep.output, "Sweep CSV");
   sweep_cmd->add_option("--plot", sweep.plot, "Error against ms per frame, PNG");
-  sweep_cmd->add_option("--jobs", sweep.jobs, "Points run at a time (child processes)");
-  sweep_cmd->add_option("--point", sweep.point, "Run only point I (0, 1: references)");
+  sweep_cmd->add_option("--jobs", sweep.jobs, "Points run at a time (child processes)")
+      ->check(kDecimal);
+  sweep_cmd->add_option("--point", sweep.point, "Run only point I (0, 1: references)")
+      ->check(kDecimal);
   sweep_cmd->add_option("--merge", sweep.merge, "Join these point CSVs instead of running");
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
   sweep_cmd->add_option("--reference-file", sweep.reference_file,
@@ -182,9 +232,12 @@ int run_main(int argc, char** argv) {
   // would say only "A subcommand is required").
   const std::vector<CLI::App*> subcommands =
       cli.get_subcommands([](const CLI::App*) { return true; });
+  if (const std::optional<std::string> empty = empty_argument(argc, argv))
+    return fail(ExitCode::kBadInput,
+                fmt::format("{}: an empty value; give one or leave the option out", *empty));
   const bool help = argc >= 2 && std::string_view(argv[1]) == "help";
   const char* command = help ? (argc >= 3 ? argv[2] : nullptr) : (argc >= 2 ? argv[1] : nullptr);
-  if (help && !command) {
+  if (help && (!command || std::string_view(command) == "help")) {
     fmt::print("{}", cli.help());
     return int(ExitCode::kSuccess);
   }
@@ -243,8 +296,24 @@ int run_main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     return fail(ExitCode::kBadInput,
                 "out of memory: the lattice or run is too large for this machine");
+  } catch (const std::filesystem::filesystem_error& e) {  // a file system call failed mid-work
+    return fail(ExitCode::kIoFailure,
+                fmt::format("{}: {}", flagsim::printable(e.path1().string()), e.code().message()));
   }
   return int(ExitCode::kBadInput);
+}
+
+// Everything printed reached standard output: a full disk or a closed pipe
+// behind it is a failure (exit 4), as GNU tools make it, not a silent success.
+int check_standard_output(int code) {
+  std::cout.flush();
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout;
+  if (!failed) return code;
+  const int error = errno;
+  std::fputs("error: cannot write to standard output: ", stderr);
+  std::fputs(error != 0 ? std::strerror(error) : "write error", stderr);
+  std::fputs("\n", stderr);
+  return code == int(ExitCode::kSuccess) ? int(ExitCode::kIoFailure) : code;
 }
 
 }  // namespace
@@ -253,11 +322,14 @@ int run_main(int argc, char** argv) {
 // bug in flag-sim: one error line and exit 1, never an abort (std::terminate).
 // Plain C stdio here: the handler itself must not throw.
 int main(int argc, char** argv) {
+  // A file-size limit (RLIMIT_FSIZE) makes a write fail with EFBIG, reported
+  // as exit 4 like a full disk, instead of killing flag-sim with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
-    return run_main(argc, argv);
+    return check_standard_output(run_main(argc, argv));
   } catch (const std::exception& e) {
     std::fputs("error: internal error (a bug in flag-sim, please report it): ", stderr);
-    std::fputs(e.what(), stderr);
+    std::fputs(flagsim::one_line(e.what()).c_str(), stderr);
     std::fputs("\n", stderr);
   } catch (...) {
     std::fputs("error: internal error (a bug in flag-sim, please report it)\n", stderr);

@@ -9,12 +9,14 @@
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/data/output_reader.hpp"
+#include "interrupt.hpp"
 #include "python_plot.hpp"
 
 namespace flagsim::app {
 namespace fs = std::filesystem;
 
 int plot_command(const std::string& h5_path, const std::string& output) {
+  const InterruptGuard interrupt;  // SIGINT / SIGTERM: python is stopped, exit 130, nothing left
   if (output.empty()) throw UserError("plot: -o STATS.png is required");
   const fs::path target(output);
   const std::string extension = target.extension().string();

@@ -6,6 +6,7 @@
 
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/stop_request.hpp"
 
 namespace flagsim::app {
 
@@ -22,12 +23,17 @@ void run_plot_script(std::string_view script, const std::vector<std::string>& ar
                      const std::string& png) {
   std::vector<std::string> argv = {kPython, "-"};
   argv.insert(argv.end(), args.begin(), args.end());
-  ChildProcess python(argv, true, false);
+  ChildProcess python(argv, true, ChildOutput::kCapture);
   if (!python.valid()) throw IoError(fmt::format("{}: cannot start {}", png, kPython));
   std::fwrite(script.data(), 1, script.size(), python.input());
   const int status = python.wait();
-  if (status != 0)
-    throw IoError(fmt::format("{}: the plot failed ({} exited with {})", png, kPython, status));
+  if (stop_requested())
+    throw Interrupted(fmt::format("plotting {} stopped by a signal; nothing was written", png));
+  if (status != 0) {  // its last line: "OSError: [Errno 28] No space left on device", ...
+    const std::string said = python.captured();
+    throw IoError(fmt::format("{}: the plot failed ({} exited with {}{})", png, kPython, status,
+                              said.empty() ? "" : ": " + said));
+  }
 }
 
 }  // namespace flagsim::app

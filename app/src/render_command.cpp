@@ -85,6 +85,26 @@ void prepare_directory(const fs::path& dir, const std::string& what,
 
 }  // namespace
 
+void add_render_outputs(FileRoles& files, const std::string& output, const std::string& flag,
+                        int first, int last) {
+  if (render::container_of(output)) {
+    files.output(output, flag);
+    files.output(output + ".partial", flag + " (while encoded)");
+    return;
+  }
+  // A directory name that is already a file: an output too ("would overwrite"
+  // when it is an input, "not a directory" otherwise).
+  std::error_code ec;
+  if (fs::exists(output, ec) && !fs::is_directory(output, ec)) files.output(output, flag);
+  std::vector<std::string> names;
+  names.reserve(2 * std::size_t(std::max(0, last - first)));
+  for (int t = first; t < last; ++t) {
+    names.push_back(fmt::format("frame_{:05d}.png", t));
+    names.push_back(fmt::format("frame_{:05d}.png.partial", t));
+  }
+  files.outputs_in(output, names, flag);
+}
+
 double frame_rate_of(const data::OutputReader& reader) {
   // From the frames' own times (a run with output.every = 3 at 30 fps wrote
   // frames 0.1 s apart: its video plays at 10 fps); the attribute when there
@@ -291,11 +311,11 @@ int render_command(const std::string& h5_path, const RenderRequest& request) {
   FileRoles files;
   files.input(h5_path, "the input");
   if (request.texture) files.input(*request.texture, "--texture");
-  files.output(request.output, "-o");
-  files.check();
+  files.check();  // the inputs: regular files, before one is opened
   // The file first: a missing or foreign input is the first thing to say.
   std::optional<Scene> scene;
   double fps = 30.0;
+  int first = 0, last = 0;
   {
     const data::OutputReader reader(h5_path);
     fps = frame_rate_of(reader);
@@ -303,7 +323,13 @@ int render_command(const std::string& h5_path, const RenderRequest& request) {
       scene = parse_scene(reader.attribute("scene"), h5_path);
     } catch (const UserError&) {  // a scene this version cannot read: defaults, no pole
     }
+    std::tie(first, last) =
+        resolve_frame_range(request.frames ? parse_frame_range(*request.frames) : std::pair{0, -1},
+                            reader.frame_count(), h5_path);
   }
+  // Every file the render will write, checked against the inputs before anything is made.
+  add_render_outputs(files, request.output, "-o", first, last);
+  files.check();
   const RenderPlan plan = plan_render(request, scene ? &*scene : nullptr, fps);
   fmt::print("{}\n", render_file(h5_path, plan));
   return int(ExitCode::kSuccess);

@@ -67,6 +67,12 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
 /// (the scene's fps over output.every), else its `fps` attribute.
 double frame_rate_of(const data::OutputReader& reader);
 
+/// The files a render of frames first .. last - 1 writes to `output`, as
+/// outputs of `files`: the video and its .partial, or each frame's PNG (and
+/// its .partial) in the directory. `flag` is how the user gave it ("-o").
+void add_render_outputs(FileRoles& files, const std::string& output, const std::string& flag,
+                        int first, int last);
+
 /// Draws every frame of the file `h5_path` as planned. Returns the summary line.
 std::string render_file(const std::string& h5_path, const RenderPlan& plan);
 

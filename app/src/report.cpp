@@ -6,10 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/message.hpp"
+#include "flagsim/core/staged_file.hpp"
 
 namespace flagsim::app {
 namespace {
@@ -119,11 +122,14 @@ std::string csv_line(const ReportRow& r) {
 }
 
 std::vector<std::string> csv_rows(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError(fmt::format("{}: cannot open", path));
+  // A regular file of at most 64 MiB (a point's row is about 300 bytes): a
+  // FIFO, /dev/zero or a huge sparse file is refused before a line is read.
+  constexpr std::size_t kMaxCsvBytes = std::size_t(64) << 20;
+  std::istringstream in(read_file_capped(path, kMaxCsvBytes, "--merge"));
   std::string line;
   if (!std::getline(in, line) || line != csv_header())
-    throw UserError(fmt::format("{}: not a flag-sim sweep or compare CSV (header differs)", path));
+    throw UserError(
+        fmt::format("{}: not a flag-sim sweep or compare CSV (header differs)", printable(path)));
   // Every row as this module writes it: the header's number of fields, the
   // first a point number (digits only), so that merging can trust them.
   const auto fields = [](const std::string& text) {
@@ -139,7 +145,12 @@ std::vector<std::string> csv_rows(const std::string& path) {
       throw UserError(
           fmt::format("{}:{}: not a row of a flag-sim sweep CSV ({} fields, the first a "
                       "point number, expected)",
-                      path, number, header_fields));
+                      printable(path), number, header_fields));
+    try {  // every number a number, now: not an internal error at the table
+      parse_csv_line(line);
+    } catch (const UserError& e) {
+      throw UserError(fmt::format("{}:{}: {}", printable(path), number, e.what()));
+    }
     rows.push_back(line);
   }
   return rows;
@@ -155,12 +166,27 @@ ReportRow parse_csv_line(const std::string& line) {
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
+  // Each cell a whole number as written by csv_line ("nan" and "inf" included), else UserError.
+  const auto parse = [&](std::size_t i) {
+    const std::string& cell = cells[i];
+    char* end = nullptr;
+    const double value = std::strtod(cell.c_str(), &end);
+    if (end != cell.c_str() + cell.size()) {
+      const std::string header = csv_header();
+      std::size_t at = 0;
+      for (std::size_t c = 0; c < i && at != std::string::npos; ++c) at = header.find(',', at) + 1;
+      const std::string name = header.substr(at, header.find(',', at) - at);
+      throw UserError(
+          fmt::format("column {} ({}) is \"{}\", not a number", i + 1, name, printable(cell, 40)));
+    }
+    return value;
+  };
   const auto number = [&](std::size_t i) {
-    return cells.size() > i && !cells[i].empty() ? std::stod(cells[i]) : 0.0;
+    return cells.size() > i && !cells[i].empty() ? parse(i) : 0.0;
   };
   const auto optional = [&](std::size_t i) -> std::optional<double> {
     if (cells.size() <= i || cells[i].empty()) return std::nullopt;
-    return std::stod(cells[i]);
+    return parse(i);
   };
   const auto text = [&](std::size_t i) { return cells.size() > i ? cells[i] : std::string(); };
   ReportRow r;
@@ -170,9 +196,15 @@ ReportRow parse_csv_line(const std::string& line) {
   r.backend = text(3);
   r.fine = text(4);
   r.coarse = text(5);
-  r.substeps = int(number(6));
-  r.relax_iterations = int(number(7));
-  r.frames = int(number(8));
+  const auto integer = [&](std::size_t i) {
+    const double value = number(i);
+    if (!(std::abs(value) < 2.0e9))
+      throw UserError(fmt::format("column {} is {}, not a count", i + 1, printable(cells[i], 40)));
+    return int(value);
+  };
+  r.substeps = integer(6);
+  r.relax_iterations = integer(7);
+  r.frames = integer(8);
   r.ms_per_frame = number(9);
   r.physics_ms = number(10);
   r.infill_ms = number(11);
@@ -225,10 +257,10 @@ void check_report_path(const std::string& path) {
 
 void write_report(const std::string& path, const std::vector<ReportRow>& rows) {
   if (path.empty()) return;
-  std::ofstream out(path);
-  out << csv_header() << "\n";
-  for (const ReportRow& row : rows) out << csv_line(row) << "\n";
-  if (!out) throw IoError(fmt::format("{}: writing the report failed", path));
+  // Whole or not at all: a full disk leaves nothing under the report's name (exit 4).
+  std::string text = csv_header() + "\n";
+  for (const ReportRow& row : rows) text += csv_line(row) + "\n";
+  write_file_whole(path, text);
 }
 
 }  // namespace flagsim::app

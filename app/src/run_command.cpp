@@ -98,10 +98,17 @@ int run_command(const RunOptions& options) {
   files.output(output_path, "the output");
   files.output(output_path + ".partial", "the output's .partial file");
   files.output(sidecar_of(output_path), "the output's XDMF sidecar");
-  if (!options.render.empty()) files.output(options.render, "--render");
+  if (!options.render.empty())  // every frame the run will write, by its number in the file
+    add_render_outputs(files, options.render, "--render", 0,
+                       (scene.simulated_frames() - 1) / scene.output.every + 1);
   files.check();
 
+  // From here a signal is exit 130: during the set-up (seconds on a large
+  // lattice) nothing is written yet, later the frames so far are kept.
+  InterruptGuard interrupt;
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
+  if (InterruptGuard::requested())
+    throw Interrupted("run stopped by a signal during its set-up; nothing was written");
   StageTimes times;
   simulation->register_stages(times);
   const int checks_stage = times.add("checks", StageGroup::kRunLoop);
@@ -131,8 +138,6 @@ int run_command(const RunOptions& options) {
   double worst_residual = 0.0;
   const Lattice& lattice = simulation->lattice();
   data::FrameWriter writer(output_path, lattice, info, scene.output.flush_every);
-
-  InterruptGuard interrupt;
   Progress progress(Progress::wanted(options.quiet), scene.simulated_frames());
   const int frames = scene.simulated_frames();
   std::vector<float> node_strain(scene.output.has_field("strain") ? lattice.node_count() : 0);

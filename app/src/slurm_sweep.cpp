@@ -9,7 +9,9 @@
 
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/message.hpp"
+#include "flagsim/core/staged_file.hpp"
 #include "report.hpp"
 
 namespace flagsim::app {
@@ -59,11 +61,12 @@ std::string array_spec(const std::vector<int>& points) {
 }
 
 void write_script(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out) throw IoError(fmt::format("{}: cannot write the batch script", path.string()));
-  ::chmod(path.c_str(), 0755);
+  {  // chmod before the rename: the script is never there without its x bit
+    StagedFile script(path.string());
+    script.write(text);
+    ::chmod(StagedFile::partial_of(path.string()).c_str(), 0755);
+    script.commit();
+  }
 }
 
 std::string header(const std::string& name, const std::string& log, const std::string& what,
@@ -125,8 +128,9 @@ std::string write_slurm_sweep(const SlurmSweep& slurm,
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw UserError(fmt::format("--slurm {}: exists and is not a directory", slurm.dir));
-  fs::create_directories(dir, ec);
-  if (ec) throw UserError(fmt::format("--slurm {}: cannot create it: {}", slurm.dir, ec.message()));
+  CreatedDirectories created;  // removed again when no script could be written into it
+  if (!created.create(dir.string(), ec))
+    throw UserError(fmt::format("--slurm {}: cannot create it: {}", slurm.dir, ec.message()));
 
   const std::string reference = (dir / "reference.rec").string();
   const bool reference_done = fs::exists(reference, ec) && sweep_point_done(point_csv(dir, 0), 0);

@@ -5,8 +5,10 @@
 // processes, --merge joins the CSVs of points run anywhere.
 #include "sweep_command.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,6 +24,8 @@
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "flagsim/core/message.hpp"
+#include "flagsim/core/staged_file.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "python_plot.hpp"
@@ -54,10 +58,10 @@ Scene scene_of(const SweepOptions& o, const SweepPoint& point) {
 }
 
 void write_rows(const std::string& path, const std::vector<std::string>& lines) {
-  std::ofstream out(path);
-  out << csv_header() << "\n";
-  for (const std::string& line : lines) out << line << "\n";
-  if (!out) throw IoError(fmt::format("{}: writing the sweep failed", path));
+  // Whole or not at all: a full disk leaves nothing under the sweep's name (exit 4).
+  std::string text = csv_header() + "\n";
+  for (const std::string& line : lines) text += line + "\n";
+  write_file_whole(path, text);
 }
 
 int point_of_line(const std::string& line) {
@@ -211,6 +215,55 @@ std::vector<std::string> point_command(const SweepOptions& o) {
   return args;
 }
 
+// The workers' directory OUT.points is the sweep's own, marked by an flock on
+// OUT.points/.lock that the sweep and its workers (which inherit the open
+// file) hold while any of them lives. The kernel drops it when the last one
+// dies, however it died: a directory whose lock can be taken was left by a
+// killed sweep and is taken over; one still locked is another live sweep's;
+// one without a .lock is not a sweep's at all. Neither of those is touched.
+class PointsLock {
+ public:
+  explicit PointsLock(const fs::path& dir) {
+    std::error_code ec;
+    const fs::path lock = dir / ".lock";
+    if (fs::exists(fs::symlink_status(dir, ec))) {
+      const int old = fs::is_directory(fs::symlink_status(dir, ec))
+                          ? ::open(lock.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW)
+                          : -1;
+      if (old < 0)
+        throw UserError(fmt::format(
+            "{}: exists and is not a sweep's points directory (no .lock); sweep --jobs writes its "
+            "points there: remove it or choose another -o",
+            printable(dir.string())));
+      const bool free = ::flock(old, LOCK_EX | LOCK_NB) == 0;
+      ::close(old);
+      if (!free)
+        throw UserError(fmt::format(
+            "{}: another sweep --jobs is writing its points there now; wait for it or choose "
+            "another -o",
+            printable(dir.string())));
+      fs::remove_all(dir, ec);  // its sweep is gone: taken over
+      fmt::print(stderr, "note: {} was left by a sweep that was killed; taken over\n",
+                 printable(dir.string()));
+    }
+    if (!fs::create_directories(dir, ec))
+      throw IoError(fmt::format("{}: cannot create the points directory: {}",
+                                printable(dir.string()), ec.message()));
+    // Not close-on-exec: the workers inherit the locked file and hold it with us.
+    fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW, 0644);
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+      throw IoError(fmt::format("{}: cannot lock the points directory", printable(dir.string())));
+  }
+  ~PointsLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  PointsLock(const PointsLock&) = delete;
+  PointsLock& operator=(const PointsLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 // --slurm DIR: the sweep as batch jobs (slurm_sweep.hpp), nothing run here.
 int slurm_sweep(const SweepOptions& o) {
   if (o.point || o.jobs > 1 || !o.merge.empty())
@@ -225,7 +278,10 @@ int slurm_sweep(const SweepOptions& o) {
   files.input(o.scene_path, "the scene");
   files.output(o.output, "the sweep CSV");
   files.output(o.plot, "--plot");
-  files.output(o.slurm_dir, "--slurm");
+  std::vector<std::string> scripts;
+  for (const char* name : {"reference.sbatch", "sweep.sbatch", "merge.sbatch"})
+    scripts.insert(scripts.end(), {name, std::string(name) + ".partial"});
+  files.outputs_in(o.slurm_dir, scripts, "--slurm");
   files.check();
   const std::string csv = fs::absolute(o.output).lexically_normal().string();
   const std::string plot = o.plot.empty() ? "" : fs::absolute(o.plot).lexically_normal().string();
@@ -260,7 +316,6 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   for (const std::string& file : o.merge) files.input(file, "--merge");
   files.output(o.output, "the sweep CSV");
   files.output(o.plot, "--plot");
-  if (!o.point && o.jobs > 1) files.output(o.output + ".points", "the points' directory");
   if (!o.reference_file.empty()) {  // read when it is there, written when it is not
     std::error_code ec;
     if (fs::exists(o.reference_file, ec))
@@ -312,15 +367,7 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     } else if (o.jobs > 1) {
       const fs::path dir = fs::path(o.output).string() + ".points";
       std::error_code ec;
-      // The workers' directory is the sweep's own: never a file or folder already there.
-      if (fs::exists(fs::symlink_status(dir, ec)))
-        throw UserError(
-            fmt::format("{}: exists; sweep --jobs writes its points there (remove it "
-                        "or choose another -o)",
-                        dir.string()));
-      if (!fs::create_directories(dir, ec))
-        throw IoError(
-            fmt::format("{}: cannot create the points directory: {}", dir.string(), ec.message()));
+      const PointsLock lock(dir);
       // The reference once, before the workers: each reads it instead of re-running it.
       const std::string reference_file =
           o.reference_file.empty() ? (dir / "reference.rec").string() : o.reference_file;

@@ -1,8 +1,13 @@
 #include "flagsim/coarse_physics/stability.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/limits.hpp"
 
 namespace flagsim::physics {
 
@@ -25,7 +30,13 @@ double explicit_stability_limit(const ClothModel& model,
 
 int substeps_per_frame(double frame_s, double stable_substep_s, int minimum) {
   const double needed = std::ceil(frame_s / (kStabilitySafety * stable_substep_s) - 1e-9);
-  return std::max(minimum, int(std::min(needed, 1e9)));
+  if (!(needed <= double(limits::kSubstepsPerFrame)))
+    throw UserError(fmt::format(
+        "the scene's stability limit is a substep of {:.3g} s: {:.3g} substeps a frame of {:.3g} "
+        "s, more than {} (make the lattice coarser (flag.fine, flag.coarse), the flag larger "
+        "(flag.size) or heavier (flag.areal_density), or the cloth softer (flag.stretch_modulus))",
+        stable_substep_s, needed, frame_s, limits::kSubstepsPerFrame));
+  return std::max(minimum, int(needed));
 }
 
 }  // namespace flagsim::physics

@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <climits>
 #include <filesystem>
 #include <system_error>
+#include <unordered_map>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/message.hpp"
 
 namespace flagsim {
 namespace fs = std::filesystem;
@@ -19,31 +23,94 @@ void FileRoles::output(std::string path, std::string what) {
   if (!path.empty()) outputs_.push_back({std::move(path), std::move(what)});
 }
 
+void FileRoles::outputs_in(const std::string& dir, const std::vector<std::string>& names,
+                           const std::string& what) {
+  const fs::path base(dir);
+  for (const std::string& name : names) outputs_.push_back({(base / name).string(), what});
+}
+
+namespace {
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// What identifies the file a path names: its device and inode where it
+// exists, else the path made absolute with every existing directory (and
+// symlink) on it resolved. Two paths with one key are one file.
+std::string file_key(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) return fmt::format("i{}:{}", st.st_dev, st.st_ino);
+  std::string key = "p";
+  std::error_code ec;
+  const fs::path p = fs::absolute(path, ec);
+  if (ec) return key.append(path);
+  const fs::path resolved = fs::weakly_canonical(p, ec);
+  return key.append((ec ? p.lexically_normal() : resolved).native());
+}
+
+// The output's directory (its nearest existing ancestor, when it is still to
+// be made) must be a directory this process can write into.
+void check_writable_directory(const std::string& path, const std::string& what,
+                              std::unordered_map<std::string, bool>& seen) {
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  while (!fs::exists(dir, ec) && dir.has_parent_path() && dir != dir.parent_path())
+    dir = dir.parent_path();
+  if (!seen.emplace(dir.string(), true).second) return;
+  if (!fs::exists(dir, ec)) return;
+  if (!fs::is_directory(dir, ec))
+    throw UserError(fmt::format("{} {}: {} is a file, not a directory", what, printable(path),
+                                printable(dir.string())));
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw UserError(fmt::format("{} {}: cannot write into {} (check its permissions)", what,
+                                printable(path), printable(dir.string())));
+}
+
+}  // namespace
+
+void check_regular_file(const std::string& path, const std::string& what) {
+  bool too_long = path.size() >= PATH_MAX;
+  for (const fs::path& part : fs::path(path))
+    too_long = too_long || part.native().size() > NAME_MAX;
+  if (too_long)
+    throw UserError(fmt::format(
+        "{} {}: too long a path ({} bytes; this system takes {} in all, {} in one name)", what,
+        printable(path), path.size(), PATH_MAX - 1, NAME_MAX));
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw UserError(fmt::format("{} {}: is {}, expected a regular file", what, printable(path),
+                                kind_of(st.st_mode)));
+}
+
 bool same_file(const std::string& a, const std::string& b) {
-  struct stat sa {
-  }, sb{};
-  if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
-    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-  // One of them does not exist (yet): the same path once resolved.
-  std::error_code ea, eb;
-  const fs::path pa = fs::weakly_canonical(fs::absolute(a, ea), ea);
-  const fs::path pb = fs::weakly_canonical(fs::absolute(b, eb), eb);
-  return !ea && !eb && pa == pb;
+  return file_key(a) == file_key(b);
 }
 
 void FileRoles::check() const {
-  for (std::size_t o = 0; o < outputs_.size(); ++o) {
-    const Role& out = outputs_[o];
-    for (const Role& in : inputs_)
-      if (same_file(out.path, in.path))
-        throw UserError(fmt::format("{}: {} would overwrite {} ({}); choose another output path",
-                                    out.path, out.what, in.what, in.path));
-    for (std::size_t other = 0; other < o; ++other)
-      if (same_file(out.path, outputs_[other].path))
-        throw UserError(
-            fmt::format("{}: {} and {} ({}) would be the same file; choose another "
-                        "output path",
-                        out.path, out.what, outputs_[other].what, outputs_[other].path));
+  std::unordered_map<std::string, const Role*> inputs, outputs;
+  for (const Role& in : inputs_) {
+    check_regular_file(in.path, in.what);
+    inputs.emplace(file_key(in.path), &in);
+  }
+  std::unordered_map<std::string, bool> directories;
+  for (const Role& out : outputs_) {
+    check_regular_file(out.path, out.what);
+    const std::string key = file_key(out.path);
+    if (const auto in = inputs.find(key); in != inputs.end())
+      throw UserError(fmt::format("{}: {} would overwrite {} ({}); choose another output path",
+                                  printable(out.path), out.what, in->second->what,
+                                  printable(in->second->path)));
+    if (const auto [other, added] = outputs.emplace(key, &out); !added)
+      throw UserError(fmt::format(
+          "{}: {} and {} ({}) would be the same file; choose another output path",
+          printable(out.path), out.what, other->second->what, printable(other->second->path)));
+    check_writable_directory(out.path, out.what, directories);
   }
 }
 

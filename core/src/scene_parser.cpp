@@ -376,6 +376,8 @@ void read_run_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("output")) {
     TableReader in(*t, "output", root.where_of("output"));
     scene.output.file = in.string("file", scene.output.file);
+    if (t->get("file") && scene.output.file.empty())
+      in.fail("file", "an empty path; give a file name or leave the key out (out/<scene.name>.h5)");
     scene.output.every = int(in.integer("every", scene.output.every, 1, kMaxFrames));
     scene.output.flush_every =
         int(in.integer("flush_every", scene.output.flush_every, 1, kMaxFrames));
@@ -390,6 +392,8 @@ void read_run_tables(TableReader& root, Scene& scene) {
             in.int_pair("size", limits::kImageSideMin, limits::kImageSideMax, "[w, h] pixels"))
       render.size_px = *size;
     render.texture = in.string("texture", render.texture);
+    if (t->get("texture") && render.texture.empty())
+      in.fail("texture", "an empty path; give a PNG or leave the key out");
     in.finish(kAllKeys);
     scene.render = render;
   }

@@ -130,9 +130,17 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   h5::Handle create = h5::plist(H5Pcreate(H5P_FILE_CREATE));
   H5Pset_obj_track_times(create.get(), false);
   impl_->file = h5::file(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, create.get(), H5P_DEFAULT));
-  if (!impl_->file.valid())
+  if (!impl_->file.valid()) {
+    fs::remove(partial, ec);  // HDF5 may have made it before failing
+    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    if (fs::is_directory(dir, ec) && ::access(dir.c_str(), W_OK) == 0)  // then: no room
+      throw IoError(fmt::format(
+          "{}: cannot create the output file (the disk or the file size limit leaves no "
+          "room); nothing was written",
+          path_));
     throw UserError(
         fmt::format("{}: cannot create the output file (is the directory writable?)", path_));
+  }
 
   const hid_t root = impl_->file.get();
   bool ok =
@@ -202,10 +210,13 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
        (impl_->strain.valid() || !wants("strain")) && impl_->max_strain.valid() &&
        impl_->mean_strain.valid() && impl_->stage_seconds.valid() && impl_->wall_seconds.valid() &&
        impl_->kinetic.valid() && H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
-  if (!ok) {
+  if (!ok) {  // the directory was writable a moment ago: the disk is full or the size limited
     impl_.reset();
     fs::remove(partial, ec);
-    throw UserError(fmt::format("{}: cannot write the output file", path_));
+    throw IoError(fmt::format(
+        "{}: cannot write the output file's header (no room on the disk or under the file size "
+        "limit); nothing was written",
+        path_));
   }
 }
 

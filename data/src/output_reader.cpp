@@ -4,9 +4,11 @@
 
 #include <filesystem>
 
+#include "file_walk.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/limits.hpp"
 #include "flagsim/data/frame_writer.hpp"
+#include "flagsim/data/isolated_read.hpp"
 #include "h5_handle.hpp"
 
 namespace flagsim::data {
@@ -64,6 +66,15 @@ OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Imp
     throw UserError(fmt::format("{}: no such file", path));
   if (H5Fis_hdf5(path.c_str()) <= 0)
     throw UserError(fmt::format("{}: not an HDF5 file (expected a flag-sim output .h5)", path));
+  // The reads below, and those the commands make next, first in a child
+  // (isolated_read.hpp): a file that crashes HDF5 is refused, not a crash here.
+  if (!in_isolated_child())
+    run_isolated(path, [&path] {
+      const OutputReader reader(path);
+      reader.read_what_commands_read();
+      walk_hdf5_file(path);
+      return std::string();
+    });
   impl_->file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!impl_->file.valid())
     throw UserError(
@@ -106,6 +117,30 @@ OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Imp
 }
 
 OutputReader::~OutputReader() = default;
+
+void OutputReader::read_what_commands_read() const {
+  for (const char* name : {"status", "status_reason", "mode", "effects", "version", "scene"})
+    attribute(name);
+  for (const char* name : {"fps", "substeps_per_frame", "substep_seconds"})
+    number_attribute(name, 0.0);
+  seed();
+  times_s();
+  stage_names();
+  stage_seconds();
+  for (const char* name : {"max_strain", "mean_strain", "wall_seconds", "kinetic_energy",
+                           "infill_converged", "infill_iterations", "coarse_offset"})
+    stat(name);
+  rest_positions();
+  coarse_rows();
+  coarse_cols();
+  for (const int frame : {0, frames_ - 1}) {
+    if (frame < 0) continue;
+    positions(frame);
+    velocities(frame);
+    node_strain(frame);
+    coarse_positions(frame);
+  }
+}
 
 std::string OutputReader::attribute(const char* name) const {
   std::string value;

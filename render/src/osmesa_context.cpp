@@ -2,6 +2,8 @@
 #include <GL/osmesa.h>
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <exception>
 #include <vector>
 
 #include "flagsim/core/errors.hpp"
@@ -10,14 +12,36 @@
 namespace flagsim::render {
 namespace {
 
+// Drawing a W x H image takes about 24 bytes a pixel at its peak: our RGBA
+// buffer and Mesa's colour and depth buffers (12), the RGB image read back and
+// the one encoded (9), and room for the encoder. Asked for (and given back)
+// before Mesa is: a size this process cannot hold is one error line, not an
+// out-of-memory error inside the GL library.
+void check_room(int width, int height) {
+  const std::size_t bytes = std::size_t(width) * std::size_t(height) * 24;
+  void* trial = std::malloc(bytes);
+  if (!trial)
+    throw UserError(
+        fmt::format("--size {}x{}: drawing it needs about {} MiB, more than this process can have; "
+                    "choose a smaller size",
+                    width, height, bytes >> 20));
+  std::free(trial);
+}
+
 class OsMesaContext final : public OffscreenContext {
  public:
-  OsMesaContext(int width, int height)
-      : width_(width), height_(height), buffer_(std::size_t(width) * std::size_t(height) * 4) {
+  OsMesaContext(int width, int height) : width_(width), height_(height) {
+    check_room(width, height);
+    buffer_.resize(std::size_t(width) * std::size_t(height) * 4);
     context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
     if (!context_) throw UserError("OSMesa could not create a rendering context");
   }
-  ~OsMesaContext() override { OSMesaDestroyContext(context_); }
+  // Mesa cannot always destroy a context that ran out of memory (a SIGSEGV in
+  // OSMesaDestroyContext while an out-of-memory error unwinds): then it is
+  // left to the process's end, which that error is on its way to.
+  ~OsMesaContext() override {
+    if (std::uncaught_exceptions() == 0) OSMesaDestroyContext(context_);
+  }
   OsMesaContext(const OsMesaContext&) = delete;
   OsMesaContext& operator=(const OsMesaContext&) = delete;
 

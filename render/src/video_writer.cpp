@@ -5,7 +5,9 @@
 
 #include <cctype>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <vector>
 
@@ -78,40 +80,66 @@ VideoWriter::VideoWriter(const std::string& path, Container container, int width
   const auto add = [&args](std::initializer_list<const char*> more) {
     args.insert(args.end(), more.begin(), more.end());
   };
+  // The muxer is named, since the file ffmpeg writes is PATH.partial.
   switch (container) {
     case Container::kMp4:
-      add({"-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p",
-           "-movflags", "+faststart"});
+      add({"-f", "mp4", "-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt",
+           "yuv420p", "-movflags", "+faststart"});
       break;
     case Container::kMkv:
-      add({"-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p"});
+      add({"-f", "matroska", "-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt",
+           "yuv420p"});
       break;
     case Container::kWebm:
-      add({"-c:v", "libvpx-vp9", "-b:v", "0", "-crf", "32", "-deadline", "realtime", "-cpu-used",
-           "8", "-row-mt", "1", "-pix_fmt", "yuv420p"});
+      add({"-f", "webm", "-c:v", "libvpx-vp9", "-b:v", "0", "-crf", "32", "-deadline", "realtime",
+           "-cpu-used", "8", "-row-mt", "1", "-pix_fmt", "yuv420p"});
       break;
     case Container::kGif:  // one palette for the whole clip, made from its frames
-      add({"-filter_complex", "[0:v]split[a][b];[a]palettegen[p];[b][p]paletteuse", "-loop", "0"});
+      add({"-f", "gif", "-filter_complex", "[0:v]split[a][b];[a]palettegen[p];[b][p]paletteuse",
+           "-loop", "0"});
       break;
   }
-  args.push_back(path);
-  ffmpeg_ = std::make_unique<ChildProcess>(std::move(args), true, false);
+  // As a file: URL with an absolute path, so no name is read as an option
+  // ("-y.gif") or as another protocol ("http:x.mp4").
+  partial_ = path + ".partial";
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(partial_, ec);
+  args.push_back("file:" + (ec ? partial_ : absolute.string()));
+  ffmpeg_ = std::make_unique<ChildProcess>(std::move(args), true, ChildOutput::kCapture);
   if (!ffmpeg_->valid()) throw IoError(fmt::format("{}: cannot start ffmpeg", path));
   pipe_ = ffmpeg_->input();
 }
 
-VideoWriter::~VideoWriter() = default;
+VideoWriter::~VideoWriter() {
+  if (!ffmpeg_) return;
+  ffmpeg_.reset();  // closes its input, waits: nothing keeps writing the file below
+  if (!finished_) std::remove(partial_.c_str());
+}
+
+void VideoWriter::fail(const std::string& what) {
+  ffmpeg_->wait();
+  pipe_ = nullptr;
+  std::remove(partial_.c_str());
+  const std::string said = ffmpeg_->captured();
+  finished_ = true;
+  throw IoError(fmt::format("{}: {}{}; no video was written", path_, what,
+                            said.empty() ? "" : fmt::format(" (ffmpeg: {})", said)));
+}
 
 void VideoWriter::write(const Image& frame) {
   if (frame.width != width_ || frame.height != height_ ||
       std::fwrite(frame.rgb.data(), 1, frame.rgb.size(), pipe_) != frame.rgb.size())
-    throw IoError(fmt::format("{}: ffmpeg stopped taking frames", path_));
+    fail("ffmpeg stopped taking frames");
 }
 
 void VideoWriter::finish() {
   const int status = ffmpeg_->wait();
   pipe_ = nullptr;
-  if (status != 0) throw IoError(fmt::format("{}: ffmpeg failed to write the video", path_));
+  // ffmpeg exits 0 after "Error writing trailer ...: No space left on device";
+  // at -loglevel error it says nothing at all when it succeeds.
+  if (status != 0 || !ffmpeg_->captured().empty()) fail("ffmpeg failed to write the video");
+  if (std::rename(partial_.c_str(), path_.c_str()) != 0) fail("cannot rename into place");
+  finished_ = true;
 }
 
 }  // namespace flagsim::render

@@ -225,7 +225,7 @@ const std::vector<BadInput>& cases() {
       {"output_under_a_file",
        kBase,
        {"run", "SCENE", "-o", "scene.toml/run.h5"},
-       "scene.toml/run.h5: cannot create the output file"},
+       "scene.toml/run.h5: scene.toml is a file, not a directory"},
       {"info_missing_file", "", {"info", "nothing.h5"}, "nothing.h5: no such file"},
       {"info_not_hdf5", kBase, {"info", "SCENE"}, "scene.toml: not an HDF5 file"},
       {"validate_bad_scene",

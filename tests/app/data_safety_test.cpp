@@ -237,9 +237,11 @@ TEST(DataSafety, PhysicalValuesNoRealSceneNeedsAreRefusedWithTheirRange) {
 TEST(DataSafety, ASeedIsTakenAsTypedOrRefused) {
   TempDir dir;
   dir.write("s.toml", kTiny);
-  for (const char* seed : {"18446744073709551615", "9223372036854775808", "-1", "12x", ""})
+  for (const char* seed : {"18446744073709551615", "9223372036854775808", "-1", "12x"})
     expect_refused(run_flag_sim({"run", "s.toml", "--seed", seed, "-o", "x.h5"}, dir.path()),
                    "expected an integer from 0 to 9223372036854775807", seed);
+  expect_refused(run_flag_sim({"run", "s.toml", "--seed", "", "-o", "x.h5"}, dir.path()),
+                 "--seed '': an empty value", "an empty seed");
   EXPECT_EQ(dir.entry_count(), 1);
   const ProcessResult largest = run_flag_sim(
       {"run", "s.toml", "--seed", "9223372036854775807", "-o", "x.h5", "--quiet"}, dir.path());

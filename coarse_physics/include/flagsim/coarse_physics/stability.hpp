@@ -25,6 +25,8 @@ double explicit_stability_limit(const ClothModel& model,
 
 /// Substeps per frame of `frame_s`: enough for each to be at most
 /// kStabilitySafety of `stable_substep_s`, and at least `minimum` (solver.substeps).
+/// Throws UserError (exit 2, before any frame) when that is more than
+/// limits::kSubstepsPerFrame, with the number and what to change.
 int substeps_per_frame(double frame_s, double stable_substep_s, int minimum);
 
 }  // namespace flagsim::physics

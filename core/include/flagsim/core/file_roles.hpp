@@ -16,11 +16,20 @@ class FileRoles {
   /// @param what  how the user named it, for the message ("the scene", "--render")
   void input(std::string path, std::string what);
   void output(std::string path, std::string what);
+  /// A directory output: every file `names` the command will write in `dir`
+  /// (PNG or OBJ frames and their .partial names) is an output, however the
+  /// names fall among the inputs.
+  void outputs_in(const std::string& dir, const std::vector<std::string>& names,
+                  const std::string& what);
 
-  /// Throws UserError naming both paths when an output is the same file as an
-  /// input or as another output: compared by device and inode where the file
-  /// exists, else by the absolute path with every existing directory (and
-  /// symlink) on it resolved.
+  /// Throws UserError naming the path, before any work, when
+  ///  - an output is the same file as an input or as another output: compared
+  ///    by device and inode where the file exists, else by the absolute path
+  ///    with every existing directory (and symlink) on it resolved;
+  ///  - an input or output exists but is not a regular file (a FIFO would block,
+  ///    a directory or device cannot be replaced);
+  ///  - a path is longer than the system takes (PATH_MAX, or one name over NAME_MAX);
+  ///  - an output's existing directory cannot be written.
   void check() const;
 
  private:
@@ -29,6 +38,10 @@ class FileRoles {
   };
   std::vector<Role> inputs_, outputs_;
 };
+
+/// Throws UserError when `path` exists and is not a regular file, or is
+/// longer than the system takes; `what` is how the user gave it.
+void check_regular_file(const std::string& path, const std::string& what);
 
 /// The directories a command creates to hold its outputs. Each one that is
 /// still empty when this goes away is removed again, deepest first: a command

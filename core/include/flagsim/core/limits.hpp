@@ -12,6 +12,10 @@ inline constexpr long long kLatticeSide = 8193;
 inline constexpr long long kLatticeNodes = 16'777'216;
 /// Frames of one run, including t = 0.
 inline constexpr long long kFrames = 10'000'000;
+/// Substeps of one frame, as solver.substeps may ask and as a stability limit
+/// may need: past this a scene is refused with the number (a 1 um flag once
+/// validated at 80 million substeps a frame and ran on for hours).
+inline constexpr long long kSubstepsPerFrame = 1'000'000;
 /// Pixels along one side of a rendered image ([render] size and --size).
 inline constexpr int kImageSideMin = 16;
 inline constexpr int kImageSideMax = 8192;

@@ -49,6 +49,11 @@ class OutputReader {
   std::vector<std::vector<double>> stage_seconds() const;
   std::vector<std::string> stage_names() const;
 
+  /// Makes the reads `info`, `render`, `export` and the others make (every
+  /// attribute and series they read, the first and last frame): the test read
+  /// a child runs before the file is opened here (isolated_read.hpp).
+  void read_what_commands_read() const;
+
  private:
   /// One frame of a per-node field under /frames ([T, J, K] for 1 component,
   /// [T, J, K, components] otherwise), shape checked first; empty when absent.

@@ -28,8 +28,8 @@ bool needs_even_size(Container container);
 
 class VideoWriter {
  public:
-  /// Starts ffmpeg writing `path` in `container`. Throws UserError when
-  /// ffmpeg is not on PATH.
+  /// Starts ffmpeg writing `path`.partial in `container`; finish() renames it
+  /// onto `path`. Throws UserError when ffmpeg is not on PATH.
   VideoWriter(const std::string& path, Container container, int width, int height, double fps);
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
@@ -38,11 +38,16 @@ class VideoWriter {
   /// Appends a frame (same size as given to the constructor). Throws IoError
   /// when ffmpeg stopped taking frames.
   void write(const Image& frame);
-  /// Waits for ffmpeg; throws IoError when it failed.
+  /// Waits for ffmpeg and puts the video under its name; throws IoError (with
+  /// ffmpeg's last line) when it failed. A writer destroyed unfinished (a
+  /// signal, an error) removes the partial video.
   void finish();
 
  private:
-  std::string path_;
+  [[noreturn]] void fail(const std::string& what);
+
+  std::string path_, partial_;
+  bool finished_ = false;
   int width_, height_;
   std::unique_ptr<ChildProcess> ffmpeg_;
   FILE* pipe_ = nullptr;  ///< ffmpeg's standard input

@@ -1,0 +1,103 @@
+#include "flagsim/data/isolated_read.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/message.hpp"
+
+namespace flagsim::data {
+namespace {
+
+bool g_in_child = false;
+
+// What the child reports, first byte of its memory file: then the text.
+enum Outcome : char { kReturned = 'R', kUserError = 'U', kIoError = 'I' };
+
+void write_all(int fd, const std::string& bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    done += std::size_t(n);
+  }
+}
+
+std::string read_all(int fd) {
+  std::string text;
+  char chunk[1 << 16];
+  ::lseek(fd, 0, SEEK_SET);
+  for (;;) {
+    const ssize_t n = ::read(fd, chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    text.append(chunk, std::size_t(n));
+  }
+  return text;
+}
+
+}  // namespace
+
+bool in_isolated_child() {
+  return g_in_child;
+}
+
+std::string run_isolated(const std::string& path, const std::function<std::string()>& work) {
+  if (g_in_child) return work();
+  const int fd = ::memfd_create("flag-sim-isolated-read", MFD_CLOEXEC);
+  if (fd < 0) return work();
+  std::fflush(nullptr);  // nothing buffered is printed twice
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fd);
+    return work();
+  }
+  if (pid == 0) {
+    g_in_child = true;
+    // Its words come back through the report; what a crashing library prints
+    // ("free(): invalid pointer") does not reach the user's terminal.
+    if (const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC); null >= 0) {
+      ::dup2(null, STDOUT_FILENO);
+      ::dup2(null, STDERR_FILENO);
+    }
+    std::string report;
+    try {
+      report = char(kReturned) + work();
+    } catch (const UserError& e) {
+      report = char(kUserError) + std::string(e.what());
+    } catch (const IoError& e) {
+      report = char(kIoError) + std::string(e.what());
+    } catch (...) {
+      ::_exit(1);
+    }
+    write_all(fd, report);
+    ::_exit(0);  // no atexit handlers, no HDF5 shutdown: the parent owns those
+  }
+  int status = 0;
+  pid_t done;
+  do done = ::waitpid(pid, &status, 0);
+  while (done < 0 && errno == EINTR);
+  const std::string report = read_all(fd);
+  ::close(fd);
+  if (done == pid && WIFSIGNALED(status))
+    throw UserError(fmt::format(
+        "{}: damaged (reading it crashes the HDF5 library: {} in a test read); not read",
+        printable(path, 200), strsignal(WTERMSIG(status))));
+  if (done != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || report.empty())
+    throw UserError(
+        fmt::format("{}: damaged (a test read of it failed); not read", printable(path, 200)));
+  std::string text = report.substr(1);
+  if (report[0] == kUserError) throw UserError(text);
+  if (report[0] == kIoError) throw IoError(text);
+  return text;
+}
+
+}  // namespace flagsim::data
