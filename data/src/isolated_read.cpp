@@ -7,16 +7,23 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
+#include <thread>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
+#include "flagsim/core/stop_request.hpp"
 
 namespace flagsim::data {
 namespace {
 
 bool g_in_child = false;
+
+// A test read reads the attributes, the first and last frame and at most
+// 16 MiB of each dataset: seconds even for a large file on a slow disk.
+constexpr int kTestReadSeconds = 60;
 
 // What the child reports, first byte of its memory file: then the text.
 enum Outcome : char { kReturned = 'R', kUserError = 'U', kIoError = 'I' };
@@ -62,6 +69,8 @@ std::string run_isolated(const std::string& path, const std::function<std::strin
   }
   if (pid == 0) {
     g_in_child = true;
+    std::signal(SIGINT, SIG_DFL);  // the parent's handlers only raise a flag: a signal ends it
+    std::signal(SIGTERM, SIG_DFL);
     // Its words come back through the report; what a crashing library prints
     // ("free(): invalid pointer") does not reach the user's terminal.
     if (const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC); null >= 0) {
@@ -81,12 +90,34 @@ std::string run_isolated(const std::string& path, const std::function<std::strin
     write_all(fd, report);
     ::_exit(0);  // no atexit handlers, no HDF5 shutdown: the parent owns those
   }
+  // Waited for at most kTestReadSeconds (a damaged global heap can also make
+  // HDF5 loop for ever), and no longer than the user wants (SIGINT, SIGTERM).
   int status = 0;
-  pid_t done;
-  do done = ::waitpid(pid, &status, 0);
-  while (done < 0 && errno == EINTR);
+  pid_t done = 0;
+  const auto start = std::chrono::steady_clock::now();
+  auto pause = std::chrono::microseconds(200);
+  bool late = false, stopped = false;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 || (done < 0 && errno == EINTR)) {
+    stopped = stop_requested();
+    late = std::chrono::steady_clock::now() - start > std::chrono::seconds(kTestReadSeconds);
+    if (stopped || late) {
+      ::kill(pid, SIGKILL);
+      do done = ::waitpid(pid, &status, 0);
+      while (done < 0 && errno == EINTR);
+      break;
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(20'000));
+  }
   const std::string report = read_all(fd);
   ::close(fd);
+  if (stopped)
+    throw Interrupted(fmt::format("reading {} stopped by a signal", printable(path, 200)));
+  if (late)
+    throw UserError(fmt::format(
+        "{}: damaged (a test read of it did not finish in {} s: the HDF5 library loops on it); "
+        "not read",
+        printable(path, 200), kTestReadSeconds));
   if (done == pid && WIFSIGNALED(status))
     throw UserError(fmt::format(
         "{}: damaged (reading it crashes the HDF5 library: {} in a test read); not read",

@@ -194,6 +194,22 @@ with tempfile.TemporaryDirectory() as base:
                 elif os.path.exists(path):
                     os.remove(path)
         print("damaged files: exit codes", outcomes)
+        # These 20 flips make HDF5 1.10.8 loop for ever in a read render makes: the test
+        # read is given up after 60 s, exit 2 (the first 4 KiB of good.h5 are the same
+        # bytes in every run of this scene).
+        flips = [(358, 4), (395, 32), (432, 32), (748, 128), (944, 16), (1164, 8), (1231, 64),
+                 (1293, 4), (1578, 2), (1765, 128), (2099, 2), (2289, 2), (2293, 8), (2381, 2),
+                 (2574, 1), (2790, 64), (2860, 128), (3033, 4), (3241, 8), (3794, 64)]
+        data = bytearray(pristine)
+        for offset, mask in flips:
+            data[offset] ^= mask
+        with open(os.path.join(d, "loop.h5"), "wb") as f:
+            f.write(data)
+        try:
+            r = run(["render", "loop.h5", "-o", "fr/", "--size", "64x48"], d, timeout=120)
+            one_error(r, 2, "a file that makes HDF5 loop", "damaged")
+        except subprocess.TimeoutExpired:
+            check(False, "a file that makes HDF5 loop: render still running after 120 s")
 
     # 6. An image that does not fit in memory is one error line, not a crash.
     if wanted("render_memory") and not ASAN:

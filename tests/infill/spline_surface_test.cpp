@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "tolerances.hpp"
@@ -23,6 +26,37 @@ TEST(SplineInterpolation, PassesThroughTheCoarseValuesAndReproducesCubics) {
   }
   for (int i = 0; i < 5; ++i)
     EXPECT_EQ(m(Eigen::Index(8) * i, i), 1.0);  // knots exact, not 1 - 1e-15
+}
+
+// The same minimisation as a dense least-squares problem: min |D f| with the
+// knots fixed, D the 4th (or fewer) differences, solved by dense Householder QR.
+Eigen::MatrixXd dense_reference(int m, int n) {
+  const int stride = (n - 1) / (m - 1), order = std::min(kSplineOrder, m);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Identity(n, n);
+  for (int o = 0; o < order; ++o) d = (d.bottomRows(d.rows() - 1) - d.topRows(d.rows() - 1)).eval();
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(n, m);
+  for (int i = 0; i + 1 < m; ++i)
+    for (int s = 0; s <= stride; ++s) {
+      p(i * stride + s, i) = 1.0 - double(s) / stride;
+      p(i * stride + s, i + 1) = double(s) / stride;
+    }
+  std::vector<int> free;
+  for (int node = 0; node < n; ++node)
+    if (node % stride != 0) free.push_back(node);
+  Eigen::MatrixXd dn(d.rows(), Eigen::Index(free.size()));
+  for (std::size_t c = 0; c < free.size(); ++c) dn.col(Eigen::Index(c)) = d.col(free[c]);
+  const Eigen::MatrixXd z = dn.householderQr().solve(-(d * p));
+  for (std::size_t c = 0; c < free.size(); ++c) p.row(free[c]) += z.row(Eigen::Index(c));
+  return p;
+}
+
+TEST(SplineInterpolation, TheSparseSolveIsTheDenseOne) {
+  // The banded QR (O(n): 0.1 s at 8193 nodes, where the dense one took 50 s)
+  // gives the dense solution's matrix to round-off.
+  for (const auto& [m, n] : {std::pair{2, 9}, {3, 9}, {5, 33}, {9, 129}, {13, 193}}) {
+    const Eigen::MatrixXd difference = spline_interpolation_matrix(m, n) - dense_reference(m, n);
+    EXPECT_LT(difference.cwiseAbs().maxCoeff(), test::kRoundOff) << m << " x " << n;
+  }
 }
 
 TEST(SplineInterpolation, FewNodesGiveTheirPolynomialAndEqualSizesTheIdentity) {
