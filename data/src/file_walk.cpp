@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace flagsim::data {
@@ -42,10 +43,14 @@ void read_slice(hid_t set, hid_t file_space, hid_t memory, int rank, const hsize
     start[0] = first;
     count[0] = 1;
   }
-  std::size_t elements = 1;
-  for (const hsize_t c : count) elements *= std::size_t(c);
-  const std::size_t bytes = elements * H5Tget_size(memory);
-  if (elements == 0 || bytes > kWholeDatasetBytes) return;
+  std::size_t bytes = H5Tget_size(memory);
+  if (bytes == 0) return;
+  for (const hsize_t c : count) {  // saturating: declared extents may reach 2^40 each
+    if (c == 0) return;
+    if (c > kWholeDatasetBytes / bytes) return;
+    bytes *= std::size_t(c);
+  }
+  if (bytes > kWholeDatasetBytes) return;
   if (H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(),
                           nullptr) < 0)
     return;
@@ -64,8 +69,12 @@ void read_dataset(hid_t set) {
     hsize_t dims[8] = {};
     H5Sget_simple_extent_dims(space, dims, nullptr);
     std::size_t bytes = H5Tget_size(memory);
-    for (int d = 0; d < rank; ++d) bytes *= std::size_t(dims[d]);
-    if (bytes <= kWholeDatasetBytes) {
+    bool small = bytes > 0;
+    for (int d = 0; d < rank && small; ++d) {  // saturating, as in read_slice
+      small = dims[d] <= kWholeDatasetBytes / std::max<std::size_t>(bytes, 1);
+      bytes *= std::size_t(dims[d]);
+    }
+    if (small && bytes <= kWholeDatasetBytes) {
       read_slice(set, space, memory, rank, dims, 0, true);
     } else if (dims[0] > 0) {
       read_slice(set, space, memory, rank, dims, 0, false);

@@ -20,6 +20,7 @@ namespace flagsim::data {
 namespace {
 
 bool g_in_child = false;
+bool g_isolated_reads = true;
 
 // A test read reads the attributes, the first and last frame and at most
 // 16 MiB of each dataset: seconds even for a large file on a slow disk.
@@ -55,6 +56,14 @@ std::string read_all(int fd) {
 
 bool in_isolated_child() {
   return g_in_child;
+}
+
+bool isolated_reads() {
+  return g_isolated_reads;
+}
+
+void set_isolated_reads(bool on) {
+  g_isolated_reads = on;
 }
 
 std::string run_isolated(const std::string& path, const std::function<std::string()>& work) {

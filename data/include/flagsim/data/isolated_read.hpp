@@ -25,4 +25,10 @@ std::string run_isolated(const std::string& path, const std::function<std::strin
 /// True inside run_isolated's child: OutputReader does not fork again there.
 bool in_isolated_child();
 
+/// Whether OutputReader makes its test read in a child (default true). The
+/// output reader's fuzz target turns it off: it wants a crash in our reads to
+/// be a crash it sees, and runs the test read's walk in-process instead.
+bool isolated_reads();
+void set_isolated_reads(bool on);
+
 }  // namespace flagsim::data
