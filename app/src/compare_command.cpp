@@ -6,8 +6,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <optional>
 
+#include "flagsim/analysis/metrics.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "interrupt.hpp"
@@ -67,6 +70,134 @@ const ReportRow* best_reference(const std::vector<ReportRow>& rows, double p99) 
   return best;
 }
 
+// Mean and sample standard deviation.
+struct Spread {
+  double mean = 0.0, sd = 0.0;
+};
+
+Spread spread_of(const std::vector<double>& values) {
+  Spread s;
+  if (values.empty()) return s;
+  for (const double v : values) s.mean += v / double(values.size());
+  if (values.size() < 2) return s;
+  double sum = 0.0;
+  for (const double v : values) sum += (v - s.mean) * (v - s.mean);
+  s.sd = std::sqrt(sum / double(values.size() - 1));
+  return s;
+}
+
+// The frames of `run` at every other row and column: the nodes a lattice of
+// (J + 1) / 2 x (K + 1) / 2 over the same flag has.
+analysis::Frames every_other_node(const RunRecord& run) {
+  const int rows = run.lattice.rows, cols = run.lattice.cols;
+  analysis::Frames out;
+  out.reserve(run.frames.size());
+  for (const auto& frame : run.frames) {
+    std::vector<Vec3> half;
+    half.reserve(std::size_t((rows + 1) / 2) * std::size_t((cols + 1) / 2));
+    for (int j = 0; j < rows; j += 2)
+      for (int k = 0; k < cols; k += 2) half.push_back(frame[run.lattice.index(j, k)]);
+    out.push_back(std::move(half));
+  }
+  return out;
+}
+
+// The flap frequency of `run`, Hz (0 when it does not flap).
+double flap_hz_of(const Scene& scene, const RunRecord& run) {
+  const MetricWindow window{0.5};
+  return describe(scene, run, run, nullptr, window).flap_hz.value_or(0.0);
+}
+
+// --seeds N: the hybrid and the reference over N seeds, and the reference
+// against itself on the lattice of every other node. Converged when the two
+// lattices' mean frequencies are within twice their standard error and their
+// mean shapes (same seed) no farther apart than 1.5 x the seed-to-seed floor
+// (two seeds of the finer lattice): then the lattice is not what the answer
+// depends on. Returns the lines compare prints.
+// The first seed's runs are the comparison's own (`hybrid0`, `reference0`).
+std::string seed_study(const CompareOptions& options, const std::vector<std::string>& sets,
+                       Mode mode, int seeds, bool show, const RunRecord& hybrid0,
+                       const RunRecord& reference0) {
+  const Scene base = load_scene(options.scene_path, with_mode(sets, Mode::kHybrid));
+  const std::uint64_t first = base.seed;
+  const auto with_seed = [&](std::vector<std::string> more, std::uint64_t seed) {
+    more.push_back(fmt::format("scene.seed={}", seed));
+    return more;
+  };
+  const int rows = base.flag.fine_rows, cols = base.flag.fine_cols;
+  const bool halves = (rows - 1) % 2 == 0 && (cols - 1) % 2 == 0 && rows >= 5 && cols >= 5;
+  std::vector<std::string> half_sets = with_mode(sets, mode);
+  half_sets.push_back(fmt::format("flag.fine=[{},{}]", (rows + 1) / 2, (cols + 1) / 2));
+  half_sets.push_back(fmt::format("flag.coarse=[{},{}]", (rows + 1) / 2, (cols + 1) / 2));
+  std::vector<double> hybrid_f, reference_f, half_f, hybrid_shape, lattice_shape, floor;
+  for (int s = 0; s < seeds; ++s) {
+    const std::uint64_t seed = first + std::uint64_t(s);
+    const Scene hybrid_scene =
+        load_scene(options.scene_path, with_seed(with_mode(sets, Mode::kHybrid), seed));
+    const Scene reference_scene =
+        load_scene(options.scene_path, with_seed(with_mode(sets, mode), seed));
+    RunRecord hybrid_run, reference_run;
+    if (s > 0) {
+      Progress hybrid_progress(show, hybrid_scene.simulated_frames(),
+                               fmt::format("seed {}: hybrid", seed));
+      hybrid_run = record_run(hybrid_scene, &hybrid_progress);
+      Progress reference_progress(show, reference_scene.simulated_frames(),
+                                  fmt::format("seed {}: reference", seed));
+      reference_run = record_run(reference_scene, &reference_progress);
+    }
+    const RunRecord& hybrid = s == 0 ? hybrid0 : hybrid_run;
+    const RunRecord& reference = s == 0 ? reference0 : reference_run;
+    const int half = int(std::min(hybrid.frames.size(), reference.frames.size()) / 2);
+    hybrid_f.push_back(flap_hz_of(hybrid_scene, hybrid));
+    reference_f.push_back(flap_hz_of(reference_scene, reference));
+    hybrid_shape.push_back(analysis::mean_shape_rms(hybrid.frames, reference.frames, half));
+    if (s > 0) floor.push_back(analysis::mean_shape_rms(reference.frames, reference0.frames, half));
+    if (!halves) continue;
+    const Scene half_scene = load_scene(options.scene_path, with_seed(half_sets, seed));
+    Progress half_progress(show, half_scene.simulated_frames(),
+                           fmt::format("seed {}: reference, every other node", seed));
+    const RunRecord coarser = record_run(half_scene, &half_progress);
+    half_f.push_back(flap_hz_of(half_scene, coarser));
+    lattice_shape.push_back(
+        analysis::mean_shape_rms(every_other_node(reference), coarser.frames, half));
+  }
+  const Spread fh = spread_of(hybrid_f), fr = spread_of(reference_f), sh = spread_of(hybrid_shape),
+               fl = spread_of(floor);
+  const double n = double(seeds);
+  const double f_error = fr.mean > 0.0 ? (fh.mean - fr.mean) / fr.mean : 0.0;
+  const double f_error_sd =
+      fr.mean > 0.0 ? std::sqrt(fh.sd * fh.sd + fr.sd * fr.sd) / std::sqrt(n) / fr.mean : 0.0;
+  std::string text = fmt::format(
+      "seeds {} .. {} ({}), mean +- seed-to-seed sd: flap f hybrid {:.2f} +- {:.2f} Hz, "
+      "reference {:.2f} +- {:.2f} Hz, hybrid error {:+.1f}% +- {:.1f}% (standard error); mean "
+      "shape hybrid to reference {:.1f} +- {:.1f} mm, reference seed to seed {:.1f} mm (the "
+      "floor)\n",
+      first, first + std::uint64_t(seeds) - 1, seeds, fh.mean, fh.sd, fr.mean, fr.sd, 100 * f_error,
+      100 * f_error_sd, 1e3 * sh.mean, 1e3 * sh.sd, 1e3 * fl.mean);
+  if (!halves)
+    return text + fmt::format(
+                      "reference convergence: not judged ({} x {} has no lattice of every other "
+                      "node: give an odd number of nodes along both sides)\n",
+                      rows, cols);
+  const Spread fc = spread_of(half_f), lc = spread_of(lattice_shape);
+  const double f_apart = std::abs(fr.mean - fc.mean);
+  const double f_allowed = 2.0 * std::sqrt(fr.sd * fr.sd + fc.sd * fc.sd) / std::sqrt(n);
+  const bool f_converged = seeds > 1 && f_apart <= f_allowed;
+  const bool shape_converged = seeds > 1 && lc.mean <= 1.5 * fl.mean;
+  return text + fmt::format(
+                    "reference convergence ({} {} x {} against {} x {}, same seeds): f {:.2f} "
+                    "vs {:.2f} Hz, {:.2f} apart, {} twice the standard error ({:.2f}); mean "
+                    "shapes {:.1f} mm apart, {} 1.5 x the floor: {}\n",
+                    to_string(mode), rows, cols, (rows + 1) / 2, (cols + 1) / 2, fr.mean, fc.mean,
+                    f_apart, f_converged ? "within" : "NOT within", f_allowed, 1e3 * lc.mean,
+                    shape_converged ? "within" : "NOT within",
+                    seeds < 2 ? "not judged (one seed has no spread: --seeds 3 or more)"
+                    : f_converged && shape_converged
+                        ? "converged (the lattice does not change the answer beyond the seeds)"
+                        : "NOT converged (the errors above are against a lattice-dependent "
+                          "answer)");
+}
+
 int compare_command(const CompareOptions& options) {
   const std::vector<Mode> modes = references_of(options.reference);
   if (!(options.horizon_s > 0.0))
@@ -78,6 +209,9 @@ int compare_command(const CompareOptions& options) {
           fmt::format("--frames {}: a comparison needs at least 2 frames", *options.frames));
     sets.push_back(fmt::format("scene.frames={}", *options.frames));
   }
+  const int seeds = int(options.seeds.value_or(1));
+  if (options.seeds && (*options.seeds < 1 || *options.seeds > 64))
+    throw UserError(fmt::format("--seeds {}: expected 1 to 64 seeds", *options.seeds));
   const Scene hybrid_scene = load_scene(options.scene_path, with_mode(sets, Mode::kHybrid));
   std::vector<Scene> reference_scenes;
   reference_scenes.reserve(modes.size());
@@ -152,6 +286,9 @@ int compare_command(const CompareOptions& options) {
   rows.push_back(describe(tracking_scene, tracking, primary, nullptr, window));
   rows.back().label = "tracking (coarse nodes driven)";
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i].point = int(i);
+  const std::string seed_lines =
+      seeds > 1 ? seed_study(options, sets, modes.front(), seeds, show, hybrid, primary)
+                : std::string();
   write_report(options.output, rows);
   fmt::print("{}", text_table(rows));
   fmt::print("{}", best_line);
@@ -160,6 +297,7 @@ int compare_command(const CompareOptions& options) {
       "of the run; errors against the {} reference{}\n",
       options.horizon_s, to_string(modes.front()),
       options.output.empty() ? "" : fmt::format(" -> {}", options.output));
+  fmt::print("{}", seed_lines);
   return int(ExitCode::kSuccess);
 }
 

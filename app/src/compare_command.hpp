@@ -15,6 +15,10 @@ struct CompareOptions {
   std::vector<std::string> sets;
   std::optional<long long> frames;
   double horizon_s = 0.5;
+  /// --seeds N: the flap and mean shape over N seeds (scene.seed, +1, ...), with
+  /// their seed-to-seed spread, and whether the reference is converged (against
+  /// the same reference on the lattice of every other node, same seeds).
+  std::optional<long long> seeds;
 };
 int compare_command(const CompareOptions& options);
 

@@ -195,6 +195,11 @@ int run_main(int argc, char** argv) {
       "--reference", compare.reference,
       "mass-spring (default), bullet, implicit, xpbd, or all (errors against the first)");
   compare_cmd->add_option("-o,--output", compare.output, "Report CSV");
+  compare_cmd
+      ->add_option("--seeds", compare.seeds,
+                   "Also the flap and mean shape over N seeds with their spread, and whether "
+                   "the reference is converged (N x the runs)")
+      ->check(kDecimal);
 
   flagsim::app::SweepOptions sweep;
   CLI::App* sweep_cmd = cli.add_subcommand(

@@ -168,6 +168,47 @@ TEST(Compare, FlapIsMeasuredAtTheFlyEndWhicheverEdgeIsPinned) {
   }
 }
 
+// The line of `text` that starts with `head`, or "".
+std::string line_starting(const std::string& text, const std::string& head) {
+  std::stringstream lines(text);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind(head, 0) == 0) return line;
+  return "";
+}
+
+TEST(Compare, SeedsGiveSpreadsAndAConvergenceVerdict) {
+  TempDir dir;
+  const std::vector<std::string> args = {"compare", "--frames",         "91", "--seeds", "2",
+                                         "--set",   "flag.fine=[17,25]"};
+  const ProcessResult first = run_flag_sim(args, dir.path());
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const std::string seeds = line_starting(first.out, "seeds 1 .. 2 (2), mean +- seed-to-seed sd");
+  const std::string verdict =
+      line_starting(first.out, "reference convergence (mass-spring 17 x 25 against 9 x 13");
+  ASSERT_FALSE(seeds.empty()) << first.out;
+  ASSERT_FALSE(verdict.empty()) << first.out;
+  EXPECT_TRUE(verdict.ends_with(": converged (the lattice does not change the answer beyond the "
+                                "seeds)") ||
+              verdict.find(": NOT converged") != std::string::npos)
+      << verdict;
+  // Seeds and lattices are the only randomness: the same command says the same.
+  const ProcessResult again = run_flag_sim(args, dir.path());
+  EXPECT_EQ(line_starting(again.out, "seeds 1 .."), seeds);
+  EXPECT_EQ(line_starting(again.out, "reference convergence"), verdict);
+  // No lattice of every other node (an even side): said, not guessed.
+  const ProcessResult even = run_flag_sim({"compare", "--frames", "31", "--seeds", "2", "--set",
+                                           "flag.fine=[18,26]", "--set", "flag.coarse=[2,2]"},
+                                          dir.path());
+  ASSERT_EQ(even.exit_code, 0) << even.err;
+  EXPECT_NE(even.out.find("reference convergence: not judged (18 x 26 has no lattice of every "
+                          "other node"),
+            std::string::npos)
+      << even.out;
+  const ProcessResult none = run_flag_sim({"compare", "--seeds", "0"}, dir.path());
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("--seeds 0: expected 1 to 64 seeds"), std::string::npos) << none.err;
+}
+
 TEST(Sweep, PointsRunAloneAndMergedEqualTheWholeSweep) {
   TempDir dir;
   std::vector<std::string> base = {"sweep", "--coarse", "5x7,9x13", "--relax", "100", "--quiet"};
