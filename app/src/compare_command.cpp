@@ -129,7 +129,11 @@ std::string seed_study(const CompareOptions& options, const std::vector<std::str
   std::vector<std::string> half_sets = with_mode(sets, mode);
   half_sets.push_back(fmt::format("flag.fine=[{},{}]", (rows + 1) / 2, (cols + 1) / 2));
   half_sets.push_back(fmt::format("flag.coarse=[{},{}]", (rows + 1) / 2, (cols + 1) / 2));
-  std::vector<double> hybrid_f, reference_f, half_f, hybrid_shape, lattice_shape, floor;
+  // Per seed; a seed whose reference (or its coarser twin) did not complete is
+  // left out of every figure, a run that does not flap out of the frequencies.
+  std::vector<double> hybrid_f, reference_f, f_difference, half_f, hybrid_shape, lattice_shape,
+      floor;
+  int incomplete = 0, not_flapping = 0;
   for (int s = 0; s < seeds; ++s) {
     const std::uint64_t seed = first + std::uint64_t(s);
     const Scene hybrid_scene =
@@ -147,33 +151,59 @@ std::string seed_study(const CompareOptions& options, const std::vector<std::str
     }
     const RunRecord& hybrid = s == 0 ? hybrid0 : hybrid_run;
     const RunRecord& reference = s == 0 ? reference0 : reference_run;
+    std::optional<RunRecord> coarser;
+    std::optional<Scene> half_scene;
+    if (halves) {
+      half_scene = load_scene(options.scene_path, with_seed(half_sets, seed));
+      Progress half_progress(show, half_scene->simulated_frames(),
+                             fmt::format("seed {}: reference, every other node", seed));
+      coarser = record_run(*half_scene, &half_progress);
+    }
+    const auto complete = [](const RunRecord& run) {
+      return run.status.state == RunState::kComplete;
+    };
+    if (!complete(hybrid) || !complete(reference) || (coarser && !complete(*coarser))) {
+      ++incomplete;
+      continue;
+    }
     const int half = int(std::min(hybrid.frames.size(), reference.frames.size()) / 2);
-    hybrid_f.push_back(flap_hz_of(hybrid_scene, hybrid));
-    reference_f.push_back(flap_hz_of(reference_scene, reference));
+    const double fh = flap_hz_of(hybrid_scene, hybrid), fr = flap_hz_of(reference_scene, reference);
+    const double fc = coarser ? flap_hz_of(*half_scene, *coarser) : 0.0;
+    if (fh > 0.0 && fr > 0.0 && (!coarser || fc > 0.0)) {
+      hybrid_f.push_back(fh);
+      reference_f.push_back(fr);
+      f_difference.push_back(fh - fr);
+      if (coarser) half_f.push_back(fc);
+    } else {
+      ++not_flapping;
+    }
     hybrid_shape.push_back(analysis::mean_shape_rms(hybrid.frames, reference.frames, half));
-    if (s > 0) floor.push_back(analysis::mean_shape_rms(reference.frames, reference0.frames, half));
-    if (!halves) continue;
-    const Scene half_scene = load_scene(options.scene_path, with_seed(half_sets, seed));
-    Progress half_progress(show, half_scene.simulated_frames(),
-                           fmt::format("seed {}: reference, every other node", seed));
-    const RunRecord coarser = record_run(half_scene, &half_progress);
-    half_f.push_back(flap_hz_of(half_scene, coarser));
-    lattice_shape.push_back(
-        analysis::mean_shape_rms(every_other_node(reference), coarser.frames, half));
+    if (s > 0 && complete(reference0))
+      floor.push_back(analysis::mean_shape_rms(reference.frames, reference0.frames, half));
+    if (coarser)
+      lattice_shape.push_back(
+          analysis::mean_shape_rms(every_other_node(reference), coarser->frames, half));
   }
-  const Spread fh = spread_of(hybrid_f), fr = spread_of(reference_f), sh = spread_of(hybrid_shape),
-               fl = spread_of(floor);
-  const double n = double(seeds);
-  const double f_error = fr.mean > 0.0 ? (fh.mean - fr.mean) / fr.mean : 0.0;
-  const double f_error_sd =
-      fr.mean > 0.0 ? std::sqrt(fh.sd * fh.sd + fr.sd * fr.sd) / std::sqrt(n) / fr.mean : 0.0;
+  const Spread fh = spread_of(hybrid_f), fr = spread_of(reference_f), fd = spread_of(f_difference),
+               sh = spread_of(hybrid_shape), fl = spread_of(floor);
+  const double flapping = double(hybrid_f.size());
+  // Paired: the hybrid and the reference of one seed start from the same perturbation.
+  const double f_error = fr.mean > 0.0 ? fd.mean / fr.mean : 0.0;
+  const double f_error_se =
+      fr.mean > 0.0 && flapping > 0 ? fd.sd / std::sqrt(flapping) / fr.mean : 0.0;
+  std::string left_out;
+  if (incomplete > 0)
+    left_out += fmt::format("; {} seed(s) left out: a run did not complete", incomplete);
+  if (not_flapping > 0)
+    left_out +=
+        fmt::format("; {} seed(s) out of the frequencies: a run did not flap", not_flapping);
   std::string text = fmt::format(
       "seeds {} .. {} ({}), mean +- seed-to-seed sd: flap f hybrid {:.2f} +- {:.2f} Hz, "
-      "reference {:.2f} +- {:.2f} Hz, hybrid error {:+.1f}% +- {:.1f}% (standard error); mean "
-      "shape hybrid to reference {:.1f} +- {:.1f} mm, reference seed to seed {:.1f} mm (the "
-      "floor)\n",
+      "reference {:.2f} +- {:.2f} Hz, hybrid error {:+.1f}% +- {:.1f}% (standard error, "
+      "paired by seed); mean shape hybrid to reference {:.1f} +- {:.1f} mm, reference seed to "
+      "seed {:.1f} mm (the floor){}\n",
       first, first + std::uint64_t(seeds) - 1, seeds, fh.mean, fh.sd, fr.mean, fr.sd, 100 * f_error,
-      100 * f_error_sd, 1e3 * sh.mean, 1e3 * sh.sd, 1e3 * fl.mean);
+      100 * f_error_se, 1e3 * sh.mean, 1e3 * sh.sd, 1e3 * fl.mean, left_out);
   if (!halves)
     return text + fmt::format(
                       "reference convergence: not judged ({} x {} has no lattice of every other "
@@ -181,21 +211,26 @@ std::string seed_study(const CompareOptions& options, const std::vector<std::str
                       rows, cols);
   const Spread fc = spread_of(half_f), lc = spread_of(lattice_shape);
   const double f_apart = std::abs(fr.mean - fc.mean);
-  const double f_allowed = 2.0 * std::sqrt(fr.sd * fr.sd + fc.sd * fc.sd) / std::sqrt(n);
-  const bool f_converged = seeds > 1 && f_apart <= f_allowed;
-  const bool shape_converged = seeds > 1 && lc.mean <= 1.5 * fl.mean;
+  const double f_allowed = 2.0 * std::sqrt(fr.sd * fr.sd + fc.sd * fc.sd) / std::sqrt(flapping);
+  const bool f_converged = f_apart <= f_allowed;
+  const bool shape_converged = lc.mean <= 1.5 * fl.mean;
+  // Judged only with a spread to judge by: two flapping seeds at least, and
+  // seeds that change the answer (else "within the seed error" means nothing).
+  const std::string verdict =
+      hybrid_f.size() < 2 || floor.empty()
+          ? "not judged (fewer than two complete, flapping seeds: --seeds 3 or more)"
+      : !(f_allowed > 0.0) || !(fl.mean > 0.0)
+          ? "not judged (the seeds do not change the flap: no spread to judge by)"
+      : f_converged && shape_converged
+          ? "converged (the lattice does not change the answer beyond the seeds)"
+          : "NOT converged (the errors above are against a lattice-dependent answer)";
   return text + fmt::format(
                     "reference convergence ({} {} x {} against {} x {}, same seeds): f {:.2f} "
                     "vs {:.2f} Hz, {:.2f} apart, {} twice the standard error ({:.2f}); mean "
                     "shapes {:.1f} mm apart, {} 1.5 x the floor: {}\n",
                     to_string(mode), rows, cols, (rows + 1) / 2, (cols + 1) / 2, fr.mean, fc.mean,
                     f_apart, f_converged ? "within" : "NOT within", f_allowed, 1e3 * lc.mean,
-                    shape_converged ? "within" : "NOT within",
-                    seeds < 2 ? "not judged (one seed has no spread: --seeds 3 or more)"
-                    : f_converged && shape_converged
-                        ? "converged (the lattice does not change the answer beyond the seeds)"
-                        : "NOT converged (the errors above are against a lattice-dependent "
-                          "answer)");
+                    shape_converged ? "within" : "NOT within", verdict);
 }
 
 int compare_command(const CompareOptions& options) {

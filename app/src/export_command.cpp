@@ -157,6 +157,7 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
     }
     StagedFile obj(obj_path);  // checked writes, under OBJ.partial until both are whole
     obj.write(obj_of(first));
+    obj.close();  // both whole before either is renamed
     staged.commit();
     obj.commit();
     written = kind == ExportKind::kPointCache ? fmt::format("{} and {}", output, obj_path) : output;

@@ -330,6 +330,9 @@ int main(int argc, char** argv) {
   // A file-size limit (RLIMIT_FSIZE) makes a write fail with EFBIG, reported
   // as exit 4 like a full disk, instead of killing flag-sim with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
+  // Helpers and test reads are waited for: SIGCHLD ignored by whoever started
+  // flag-sim would make the kernel reap them first (waitpid: ECHILD).
+  std::signal(SIGCHLD, SIG_DFL);
   try {
     return check_standard_output(run_main(argc, argv));
   } catch (const std::exception& e) {

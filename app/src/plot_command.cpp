@@ -25,8 +25,7 @@ int plot_command(const std::string& h5_path, const std::string& output) {
         fmt::format("-o {}: expected an image name ending in .png, .svg or .pdf", output));
   // Drawn under a temporary name with the same extension (matplotlib picks the
   // format from it), renamed when whole: a failed plot leaves nothing.
-  const std::string partial =
-      (target.parent_path() / (target.stem().string() + ".partial" + extension)).string();
+  const std::string partial = partial_image_of(output);
   FileRoles files;
   files.input(h5_path, "the input");
   files.output(output, "-o");
@@ -42,17 +41,7 @@ int plot_command(const std::string& h5_path, const std::string& output) {
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   if (!fs::is_directory(dir) || access(dir.c_str(), W_OK) != 0)
     throw UserError(fmt::format("-o {}: cannot write to {}", output, dir.string()));
-  try {
-    run_plot_script(stats_plot_script(), {h5_path, partial}, output);
-    std::error_code ec;
-    fs::rename(partial, output, ec);
-    if (ec)
-      throw IoError(fmt::format("{}: cannot rename to {}: {}", partial, output, ec.message()));
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(partial, ec);
-    throw;
-  }
+  draw_plot(stats_plot_script(), {h5_path, output}, 1, output);
   fmt::print("plotted {} frames of {} -> {}\n", frames, h5_path, output);
   return int(ExitCode::kSuccess);
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
@@ -11,8 +12,11 @@
 namespace flagsim::app {
 
 void check_plot_tools(const std::string& what, bool needs_h5py) {
-  if (run_quietly({kPython, "-c", needs_h5py ? "import matplotlib, h5py" : "import matplotlib"}) !=
-      0)
+  const int status =
+      run_quietly({kPython, "-c", needs_h5py ? "import matplotlib, h5py" : "import matplotlib"});
+  if (stop_requested())  // the signal ended the check, not a missing module
+    throw Interrupted(fmt::format("{} stopped by a signal; nothing was written", what));
+  if (status != 0)
     throw UserError(fmt::format(
         "{} needs {} with matplotlib{} (apt-get install "
         "python3-matplotlib{})",
@@ -33,6 +37,29 @@ void run_plot_script(std::string_view script, const std::vector<std::string>& ar
     const std::string said = python.captured();
     throw IoError(fmt::format("{}: the plot failed ({} exited with {}{})", png, kPython, status,
                               said.empty() ? "" : ": " + said));
+  }
+}
+
+std::string partial_image_of(const std::string& image) {
+  const std::filesystem::path target(image);
+  return (target.parent_path() /
+          (target.stem().string() + ".partial" + target.extension().string()))
+      .string();
+}
+
+void draw_plot(std::string_view script, std::vector<std::string> args, std::size_t image_arg,
+               const std::string& image) {
+  const std::string partial = partial_image_of(image);
+  args.at(image_arg) = partial;
+  try {
+    run_plot_script(script, args, image);
+    std::error_code ec;
+    std::filesystem::rename(partial, image, ec);
+    if (ec) throw IoError(fmt::format("{}: cannot rename to {}: {}", partial, image, ec.message()));
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(partial, ec);
+    throw;
   }
 }
 

@@ -23,4 +23,13 @@ void check_plot_tools(const std::string& what, bool needs_h5py = false);
 void run_plot_script(std::string_view script, const std::vector<std::string>& args,
                      const std::string& png);
 
+/// Where an image is drawn before it is whole: STEM.partial.EXT beside it
+/// (matplotlib takes the format from the extension).
+std::string partial_image_of(const std::string& image);
+
+/// Runs `script` with args[image_arg] = partial_image_of(image) and renames
+/// the result onto `image`: a failed or interrupted plot leaves nothing.
+void draw_plot(std::string_view script, std::vector<std::string> args, std::size_t image_arg,
+               const std::string& image);
+
 }  // namespace flagsim::app

@@ -236,22 +236,37 @@ class PointsLock {
             "points there: remove it or choose another -o",
             printable(dir.string())));
       const bool free = ::flock(old, LOCK_EX | LOCK_NB) == 0;
-      ::close(old);
-      if (!free)
+      if (!free) {
+        ::close(old);
         throw UserError(fmt::format(
             "{}: another sweep --jobs is writing its points there now; wait for it or choose "
             "another -o",
             printable(dir.string())));
-      fs::remove_all(dir, ec);  // its sweep is gone: taken over
+      }
+      // Its sweep is gone: taken over. Moved aside while its lock is held (a
+      // second sweep taking it over at the same moment finds it locked), then removed.
+      const fs::path aside = dir.string() + fmt::format(".stale.{}", ::getpid());
+      fs::rename(dir, aside, ec);
+      ::close(old);
+      if (ec)
+        throw IoError(
+            fmt::format("{}: cannot take it over: {}", printable(dir.string()), ec.message()));
+      fs::remove_all(aside, ec);
       fmt::print(stderr, "note: {} was left by a sweep that was killed; taken over\n",
                  printable(dir.string()));
     }
-    if (!fs::create_directories(dir, ec))
-      throw IoError(fmt::format("{}: cannot create the points directory: {}",
-                                printable(dir.string()), ec.message()));
-    // Not close-on-exec: the workers inherit the locked file and hold it with us.
-    fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW, 0644);
-    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+    if (!fs::create_directory(dir, ec))  // atomic: of two sweeps, one makes it
+      throw UserError(
+          fmt::format("{}: cannot create the points directory ({}); another sweep "
+                      "may have just made it",
+                      printable(dir.string()), ec ? ec.message() : std::string("it exists")));
+    // The lock is taken before the file has its name: no other sweep ever sees
+    // an unlocked .lock in a live directory. Not close-on-exec: the workers
+    // inherit the locked file and hold it with us.
+    const fs::path unnamed = dir / fmt::format(".lock.{}", ::getpid());
+    fd_ = ::open(unnamed.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0 ||
+        std::rename(unnamed.c_str(), lock.c_str()) != 0)
       throw IoError(fmt::format("{}: cannot lock the points directory", printable(dir.string())));
   }
   ~PointsLock() {
@@ -278,6 +293,7 @@ int slurm_sweep(const SweepOptions& o) {
   files.input(o.scene_path, "the scene");
   files.output(o.output, "the sweep CSV");
   files.output(o.plot, "--plot");
+  if (!o.plot.empty()) files.output(partial_image_of(o.plot), "--plot (while drawn)");
   std::vector<std::string> scripts;
   for (const char* name : {"reference.sbatch", "sweep.sbatch", "merge.sbatch"})
     scripts.insert(scripts.end(), {name, std::string(name) + ".partial"});
@@ -316,6 +332,7 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   for (const std::string& file : o.merge) files.input(file, "--merge");
   files.output(o.output, "the sweep CSV");
   files.output(o.plot, "--plot");
+  if (!o.plot.empty()) files.output(partial_image_of(o.plot), "--plot (while drawn)");
   if (!o.reference_file.empty()) {  // read when it is there, written when it is not
     std::error_code ec;
     if (fs::exists(o.reference_file, ec))
@@ -394,7 +411,7 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   if (!o.plot.empty()) {
     std::vector<std::string> args = {o.output, o.plot};
     if (!plot_title.empty()) args.push_back(plot_title);
-    run_plot_script(sweep_plot_script(), args, o.plot);
+    draw_plot(sweep_plot_script(), args, 1, o.plot);
   }
   // The table compare prints, for the whole sweep (a single --point prints only its CSV row).
   if (!o.point) {

@@ -86,6 +86,10 @@ int ChildProcess::wait() {
   int status = 0;
   pid_t done;
   bool passed_on = false;
+  if (stop_requested()) {  // it came before the wait: passed on now
+    ::kill(pid_, SIGTERM);
+    passed_on = true;
+  }
   for (;;) {
     done = ::waitpid(pid_, &status, 0);
     if (done >= 0 || errno != EINTR) break;

@@ -27,12 +27,22 @@ std::string reason(int error) {
 StagedFile::StagedFile(std::string path) : path_(std::move(path)), partial_(partial_of(path_)) {
   // Non-blocking open: a FIFO without a reader fails at once instead of
   // waiting; anything that is not a regular file is refused before a byte.
-  fd_ = ::open(partial_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NONBLOCK, 0666);
-  if (fd_ < 0) fail("cannot create", errno);
+  // A stale NAME.partial (a file or a symlink) is unlinked, never written
+  // through; what is made is a new file (O_EXCL), never one that was there.
+  struct stat old {};
+  if (::lstat(partial_.c_str(), &old) == 0 && !S_ISDIR(old.st_mode)) ::unlink(partial_.c_str());
+  fd_ = ::open(partial_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK,
+               0666);
+  if (fd_ < 0) {
+    const int error = errno;
+    throw IoError(fmt::format("{}: cannot create {}: {}; nothing was written", printable(path_),
+                              printable(partial_), reason(error)));
+  }
   struct stat st {};
   if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd_);
     fd_ = -1;
+    std::remove(partial_.c_str());  // a constructor that throws has no destructor run
     throw IoError(fmt::format("{}: not a regular file; nothing was written", printable(partial_)));
   }
   ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
@@ -75,13 +85,18 @@ void StagedFile::write(std::string_view bytes) {
   }
 }
 
-void StagedFile::commit() {
+void StagedFile::close() {
+  if (fd_ < 0) return;
   flush();
   const int fd = std::exchange(fd_, -1);
   if (::close(fd) != 0) {  // NFS and some file systems report a full disk only here
     const int error = errno;
     fail("cannot close", error);
   }
+}
+
+void StagedFile::commit() {
+  close();
   if (std::rename(partial_.c_str(), path_.c_str()) != 0) fail("cannot rename into place", errno);
   committed_ = true;
 }

@@ -63,6 +63,7 @@ Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
   dn.setFromTriplets(dn_entries.begin(), dn_entries.end());
   dn.makeCompressed();
   Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> qr(dn);
+  assert(qr.info() == Eigen::Success);  // D N has full column rank: no free node is unconstrained
   const Eigen::MatrixXd rhs = -(d * p);
   const Eigen::MatrixXd z = qr.solve(rhs);
   Eigen::MatrixXd matrix = p;

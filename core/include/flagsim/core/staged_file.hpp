@@ -20,6 +20,9 @@ class StagedFile {
 
   /// Appends `bytes`. Throws IoError (exit 4) with the system's reason.
   void write(std::string_view bytes);
+  /// Writes what is buffered and closes the file (checked), not yet renamed:
+  /// for files that must all be whole before any of them is renamed.
+  void close();
   /// Writes what is buffered, closes the file and renames it onto PATH.
   /// Throws IoError, leaving nothing under either name, when any step fails.
   void commit();
