@@ -102,23 +102,17 @@ analysis::Frames every_other_node(const RunRecord& run) {
   return out;
 }
 
-// The flap frequency of `run`, Hz (0 when it does not flap).
-double flap_hz_of(const Scene& scene, const RunRecord& run) {
-  const MetricWindow window{0.5};
-  return describe(scene, run, run, nullptr, window).flap_hz.value_or(0.0);
-}
-
 // --seeds N: the hybrid and the reference over N seeds, and the reference
 // against itself on the lattice of every other node. Converged when the two
 // lattices' mean frequencies are within twice their standard error and their
 // mean shapes (same seed) no farther apart than 1.5 x the seed-to-seed floor
 // (two seeds of the finer lattice): then the lattice is not what the answer
 // depends on. Returns the lines compare prints.
-// The first seed's runs are the comparison's own (`hybrid0`, `reference0`).
+// The first seed's runs are the comparison's own (`base`, the hybrid's scene;
+// `hybrid0`, `reference0`).
 std::string seed_study(const CompareOptions& options, const std::vector<std::string>& sets,
-                       Mode mode, int seeds, bool show, const RunRecord& hybrid0,
+                       Mode mode, int seeds, bool show, const Scene& base, const RunRecord& hybrid0,
                        const RunRecord& reference0) {
-  const Scene base = load_scene(options.scene_path, with_mode(sets, Mode::kHybrid));
   const std::uint64_t first = base.seed;
   const auto with_seed = [&](std::vector<std::string> more, std::uint64_t seed) {
     more.push_back(fmt::format("scene.seed={}", seed));
@@ -321,9 +315,9 @@ int compare_command(const CompareOptions& options) {
   rows.push_back(describe(tracking_scene, tracking, primary, nullptr, window));
   rows.back().label = "tracking (coarse nodes driven)";
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i].point = int(i);
-  const std::string seed_lines =
-      seeds > 1 ? seed_study(options, sets, modes.front(), seeds, show, hybrid, primary)
-                : std::string();
+  const std::string seed_lines = seeds > 1 ? seed_study(options, sets, modes.front(), seeds, show,
+                                                        hybrid_scene, hybrid, primary)
+                                           : std::string();
   write_report(options.output, rows);
   fmt::print("{}", text_table(rows));
   fmt::print("{}", best_line);

@@ -54,6 +54,10 @@ std::vector<double> fly_end_signal(const RunRecord& run, PinSet pin) {
 
 }  // namespace
 
+double flap_hz_of(const Scene& scene, const RunRecord& run) {
+  return analysis::flap_frequency_hz(fly_end_signal(run, scene.flag.pin), scene.fps);
+}
+
 ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& reference,
                    const RunRecord* tracking, const MetricWindow& window) {
   ReportRow row;
@@ -82,9 +86,8 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
   const int half = int(std::min(run.frames.size(), reference.frames.size()) / 2);
   row.short_horizon_rms_m = analysis::short_horizon_rms(run.frames, reference.frames, horizon);
   row.mean_shape_rms_m = analysis::mean_shape_rms(run.frames, reference.frames, half);
-  row.flap_hz = analysis::flap_frequency_hz(fly_end_signal(run, scene.flag.pin), scene.fps);
-  const double reference_hz =
-      analysis::flap_frequency_hz(fly_end_signal(reference, scene.flag.pin), scene.fps);
+  row.flap_hz = flap_hz_of(scene, run);
+  const double reference_hz = flap_hz_of(scene, reference);
   if (reference_hz > 0.0) row.flap_rel_error = std::abs(*row.flap_hz - reference_hz) / reference_hz;
   row.wrinkle_wavelength_m = analysis::wrinkle_wavelength_m(run.lattice, run.frames, half);
   if (tracking && !run.coarse_rows.empty()) {

@@ -40,6 +40,10 @@ struct MetricWindow {
 ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& reference,
                    const RunRecord* tracking, const MetricWindow& window);
 
+/// The flap frequency of `run` (of `scene`), Hz: zero crossings of the fly
+/// end's out-of-plane position over the second half (0 when it does not flap).
+double flap_hz_of(const Scene& scene, const RunRecord& run);
+
 std::string csv_header();
 std::string csv_line(const ReportRow& row);
 /// Rows of a CSV this module wrote (for merging sweep points). Throws UserError naming the file.

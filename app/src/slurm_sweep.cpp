@@ -61,12 +61,11 @@ std::string array_spec(const std::vector<int>& points) {
 }
 
 void write_script(const fs::path& path, const std::string& text) {
-  {  // chmod before the rename: the script is never there without its x bit
-    StagedFile script(path.string());
-    script.write(text);
-    ::chmod(StagedFile::partial_of(path.string()).c_str(), 0755);
-    script.commit();
-  }
+  // chmod before the rename: the script is never there without its x bit.
+  StagedFile script(path.string());
+  script.write(text);
+  ::chmod(StagedFile::partial_of(path.string()).c_str(), 0755);
+  script.commit();
 }
 
 std::string header(const std::string& name, const std::string& log, const std::string& what,

@@ -86,17 +86,13 @@ int ChildProcess::wait() {
   int status = 0;
   pid_t done;
   bool passed_on = false;
-  if (stop_requested()) {  // it came before the wait: passed on now
-    ::kill(pid_, SIGTERM);
-    passed_on = true;
-  }
-  for (;;) {
-    done = ::waitpid(pid_, &status, 0);
-    if (done >= 0 || errno != EINTR) break;
+  for (;;) {  // a stop that came before the wait, or interrupted it, is passed on once
     if (stop_requested() && !passed_on) {
       ::kill(pid_, SIGTERM);
       passed_on = true;
     }
+    done = ::waitpid(pid_, &status, 0);
+    if (done >= 0 || errno != EINTR) break;
   }
   pid_ = -1;
   return done > 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <system_error>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
@@ -56,13 +57,13 @@ std::string file_key(const std::string& path) {
 // The output's directory (its nearest existing ancestor, when it is still to
 // be made) must be a directory this process can write into.
 void check_writable_directory(const std::string& path, const std::string& what,
-                              std::unordered_map<std::string, bool>& seen) {
+                              std::unordered_set<std::string>& seen) {
   fs::path dir = fs::path(path).parent_path();
   if (dir.empty()) dir = ".";
   std::error_code ec;
   while (!fs::exists(dir, ec) && dir.has_parent_path() && dir != dir.parent_path())
     dir = dir.parent_path();
-  if (!seen.emplace(dir.string(), true).second) return;
+  if (!seen.insert(dir.string()).second) return;
   if (!fs::exists(dir, ec)) return;
   if (!fs::is_directory(dir, ec))
     throw UserError(fmt::format("{} {}: {} is a file, not a directory", what, printable(path),
@@ -98,7 +99,7 @@ void FileRoles::check() const {
     check_regular_file(in.path, in.what);
     inputs.emplace(file_key(in.path), &in);
   }
-  std::unordered_map<std::string, bool> directories;
+  std::unordered_set<std::string> directories;
   for (const Role& out : outputs_) {
     check_regular_file(out.path, out.what);
     const std::string key = file_key(out.path);

@@ -27,9 +27,8 @@ void write_png(const std::string& path, const Image& image) {
   png.format = PNG_FORMAT_RGB;
   // Encoded in memory, then written whole (PATH.partial, renamed): a full disk
   // leaves no cut PNG under a frame's name.
-  png_alloc_size_t bytes = 0;
-  if (!png_image_write_to_memory(&png, nullptr, &bytes, 0, image.rgb.data(), 0, nullptr))
-    throw IoError(fmt::format("{}: cannot encode PNG ({})", path, png.message));
+  // Encoded once, into a buffer of libpng's bound on the encoded size.
+  png_alloc_size_t bytes = PNG_IMAGE_PNG_SIZE_MAX(png);
   std::string encoded(bytes, '\0');
   if (!png_image_write_to_memory(&png, encoded.data(), &bytes, 0, image.rgb.data(), 0, nullptr))
     throw IoError(fmt::format("{}: cannot encode PNG ({})", path, png.message));
