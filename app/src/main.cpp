@@ -219,6 +219,11 @@ int run_main(int argc, char** argv) {
       ->check(kDecimal);
   sweep_cmd->add_option("--merge", sweep.merge, "Join these point CSVs instead of running");
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");
+  sweep_cmd
+      ->add_option("--seeds", sweep.seeds,
+                   "Every point at N seeds, each against the reference of its seed; prints the "
+                   "mean +- seed-to-seed sd per point (N x the runs)")
+      ->check(kDecimal);
   sweep_cmd->add_option("--reference-file", sweep.reference_file,
                         "The reference run: read if there, else run and saved there");
   sweep_cmd->add_flag("--list", sweep.list, "Print the points (index, label, settings) and exit");

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -61,6 +62,7 @@ double flap_hz_of(const Scene& scene, const RunRecord& run) {
 ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& reference,
                    const RunRecord* tracking, const MetricWindow& window) {
   ReportRow row;
+  row.seed = scene.seed;
   row.mode = to_string(scene.mode);
   row.backend = backend_name_of(scene);
   row.fine = lattice_text(run.lattice.rows, run.lattice.cols);
@@ -110,18 +112,19 @@ std::string csv_header() {
   return "point,label,mode,backend,fine,coarse,substeps,relax_iterations,frames,ms_per_frame,"
          "physics_ms,infill_ms,max_strain,p99_strain,short_horizon_rms_m,tracking_rms_m,flap_hz,"
          "flap_rel_error,mean_shape_rms_m,wrinkle_wavelength_m,status,infill_solver,best_reference,"
-         "speedup_vs_best_reference";
+         "speedup_vs_best_reference,seed";
 }
 
 std::string csv_line(const ReportRow& r) {
   return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{}",
+      "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{},"
+      "{}",
       r.point, r.label, r.mode, r.backend, r.fine, r.coarse, r.substeps, r.relax_iterations,
       r.frames, r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
       optional_text(r.short_horizon_rms_m), optional_text(r.tracking_rms_m),
       optional_text(r.flap_hz), optional_text(r.flap_rel_error), optional_text(r.mean_shape_rms_m),
       optional_text(r.wrinkle_wavelength_m), to_string(r.status), r.infill_solver, r.best_reference,
-      optional_text(r.speedup_vs_best_reference));
+      optional_text(r.speedup_vs_best_reference), r.seed);
 }
 
 std::vector<std::string> csv_rows(const std::string& path) {
@@ -227,6 +230,14 @@ ReportRow parse_csv_line(const std::string& line) {
   r.infill_solver = text(21);
   r.best_reference = text(22);
   r.speedup_vs_best_reference = optional(23);
+  const std::string seed = text(24);
+  if (seed.empty() || seed.size() > 20 ||
+      !std::all_of(seed.begin(), seed.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    throw UserError(fmt::format("column 25 (seed) is \"{}\", not a seed", printable(seed, 40)));
+  errno = 0;
+  r.seed = std::strtoull(seed.c_str(), nullptr, 10);
+  if (errno == ERANGE)
+    throw UserError(fmt::format("column 25 (seed) is {}, past 2^64", printable(seed, 40)));
   return r;
 }
 

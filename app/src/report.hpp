@@ -1,6 +1,7 @@
 #pragma once
 // The rows `compare` and `sweep` write: one run each, its cost and its error
 // against the reference run (contract: "Compare and sweep reports").
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@ struct ReportRow {
   /// ms/frame over the hybrid's; empty where no reference run qualified.
   std::string best_reference;
   std::optional<double> speedup_vs_best_reference;
+  std::uint64_t seed = 0;  ///< the run's scene.seed (sweep --seeds: one row per point and seed)
 };
 
 /// Where the metrics look: the short horizon (first `horizon_s`), and the

@@ -33,12 +33,14 @@ std::string point_csv(const fs::path& dir, int point) {
 
 }  // namespace
 
-bool sweep_point_done(const std::string& csv, int point) {
+bool sweep_point_done(const std::string& csv, int point, int seeds) {
   std::error_code ec;
   if (!fs::is_regular_file(csv, ec)) return false;
   try {
     const std::vector<std::string> rows = csv_rows(csv);
-    return rows.size() == 1 && parse_csv_line(rows[0]).point == point;
+    return rows.size() == std::size_t(seeds) &&
+           std::all_of(rows.begin(), rows.end(),
+                       [&](const std::string& row) { return parse_csv_line(row).point == point; });
   } catch (const UserError&) {
     return false;  // half-written or not ours: run it again
   }
@@ -132,10 +134,11 @@ std::string write_slurm_sweep(const SlurmSweep& slurm,
     throw UserError(fmt::format("--slurm {}: cannot create it: {}", slurm.dir, ec.message()));
 
   const std::string reference = (dir / "reference.rec").string();
-  const bool reference_done = fs::exists(reference, ec) && sweep_point_done(point_csv(dir, 0), 0);
+  const bool reference_done =
+      fs::exists(reference, ec) && sweep_point_done(point_csv(dir, 0), 0, slurm.seeds);
   std::vector<int> missing;
   for (int i = 1; i < points; ++i)
-    if (!sweep_point_done(point_csv(dir, i), i)) missing.push_back(i);
+    if (!sweep_point_done(point_csv(dir, i), i, slurm.seeds)) missing.push_back(i);
 
   // reference.sbatch: point 0, saving the reference.
   std::vector<std::string> reference_command = point_command;

@@ -19,6 +19,7 @@ struct SlurmSweep {
   std::string dir;                       ///< --slurm DIR
   bool submit = false;                   ///< --submit: sbatch the jobs, print their ids
   std::vector<std::string> sbatch_args;  ///< --slurm-arg: extra #SBATCH options
+  int seeds = 1;                         ///< --seeds: rows a point's CSV holds when done
 };
 
 /// Writes the three scripts for a sweep of `points` points (0 is the
@@ -31,8 +32,8 @@ std::string write_slurm_sweep(const SlurmSweep& slurm,
                               const std::vector<std::string>& point_command, int points,
                               const std::string& csv, const std::string& plot);
 
-/// Whether `csv` holds point `point`'s row, whole (what sweep --point wrote).
-bool sweep_point_done(const std::string& csv, int point);
+/// Whether `csv` holds point `point`'s `seeds` rows, whole (what sweep --point wrote).
+bool sweep_point_done(const std::string& csv, int point, int seeds = 1);
 
 /// The command line as /bin/sh reads it: each argument in single quotes.
 std::string shell_quoted(const std::vector<std::string>& argv);

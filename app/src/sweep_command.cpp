@@ -14,7 +14,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -51,10 +53,57 @@ std::vector<std::string> base_sets(const SweepOptions& o) {
   return sets;
 }
 
-Scene scene_of(const SweepOptions& o, const SweepPoint& point) {
+// The scene of `point` at the sweep's seed number `seed` (0 .. --seeds - 1):
+// scene.seed + seed.
+Scene scene_of(const SweepOptions& o, const SweepPoint& point, int seed = 0) {
   std::vector<std::string> sets = base_sets(o);
   sets.insert(sets.end(), point.sets.begin(), point.sets.end());
+  if (seed > 0) {
+    const std::uint64_t first = load_scene(o.scene_path, sets).seed;
+    sets.push_back(fmt::format("scene.seed={}", first + std::uint64_t(seed)));
+  }
   return load_scene(o.scene_path, sets);
+}
+
+// Where the reference of seed number `seed` is saved: `file` for the first,
+// FILE.seedN for the others (N = 1 .. --seeds - 1).
+std::string reference_file_of(const std::string& file, int seed) {
+  return file.empty() || seed == 0 ? file : fmt::format("{}.seed{}", file, seed);
+}
+
+// The seeds' summary a sweep prints after its table: per point, the flap and
+// the errors against the reference of the same seed, mean +- seed-to-seed sd.
+std::string seed_summary(const std::vector<ReportRow>& rows) {
+  std::map<int, std::vector<const ReportRow*>> by_point;
+  for (const ReportRow& row : rows) by_point[row.point].push_back(&row);
+  const auto stats = [](const std::vector<double>& values) {
+    double mean = 0.0, square = 0.0;
+    for (double v : values) mean += v / double(values.size());
+    for (double v : values) square += (v - mean) * (v - mean);
+    const double sd = values.size() > 1 ? std::sqrt(square / double(values.size() - 1)) : 0.0;
+    return std::pair{mean, sd};
+  };
+  std::string out =
+      "over the seeds, mean +- seed-to-seed sd (errors against the reference of the same seed):\n";
+  for (const auto& [point, seeds] : by_point) {
+    std::vector<double> flap, error, shape;
+    for (const ReportRow* row : seeds) {
+      if (row->status != RunState::kComplete) continue;
+      if (row->flap_hz && *row->flap_hz > 0.0) flap.push_back(*row->flap_hz);
+      if (row->flap_rel_error && std::isfinite(*row->flap_rel_error))
+        error.push_back(100.0 * *row->flap_rel_error);
+      if (row->mean_shape_rms_m) shape.push_back(1e3 * *row->mean_shape_rms_m);
+    }
+    const auto field = [&](const std::vector<double>& v, const char* unit) {
+      if (v.empty()) return std::string("-");
+      const auto [mean, sd] = stats(v);
+      return fmt::format("{:.2f} +- {:.2f}{}", mean, sd, unit);
+    };
+    out += fmt::format("  {:<38} {} seed(s): flap {}, |flap error| {}, mean shape {}\n",
+                       seeds.front()->label, seeds.size(), field(flap, " Hz"), field(error, "%"),
+                       field(shape, " mm"));
+  }
+  return out;
 }
 
 void write_rows(const std::string& path, const std::vector<std::string>& lines) {
@@ -71,9 +120,9 @@ int point_of_line(const std::string& line) {
 // The reference (point 0) run: read from `file` when it is there, else run
 // and, with a file named, saved to it for the other points.
 RunRecord reference_run(const SweepOptions& o, const std::vector<SweepPoint>& grid,
-                        const std::string& file) {
+                        const std::string& file, int seed) {
   std::error_code ec;
-  const Scene reference_scene = scene_of(o, grid[0]);
+  const Scene reference_scene = scene_of(o, grid[0], seed);
   if (!file.empty() && fs::exists(file, ec)) {
     RunRecord saved = load_record(file);
     // A record of another sweep's reference would measure every point against the wrong run.
@@ -85,32 +134,42 @@ RunRecord reference_run(const SweepOptions& o, const std::vector<SweepPoint>& gr
     return saved;
   }
   Progress progress(Progress::wanted(o.quiet), reference_scene.simulated_frames(),
-                    "reference (point 0)");
+                    o.seeds > 1 ? fmt::format("reference (point 0), seed {}", reference_scene.seed)
+                                : std::string("reference (point 0)"));
   RunRecord reference = record_run(reference_scene, &progress);
   if (!file.empty()) save_record(reference, file);
   return reference;
 }
 
-// Runs `points` (indices) in this process, against the reference.
+// Runs `points` (indices) in this process, each seed against the reference of
+// that seed (one reference held at a time); rows by point, then seed.
 std::vector<std::string> run_points(const SweepOptions& o, const std::vector<SweepPoint>& grid,
                                     const std::vector<int>& points) {
   const MetricWindow window{o.horizon_s};
-  // The reference is run only when a point needs it and no saved one is given.
-  const RunRecord reference = reference_run(o, grid, o.reference_file);
-  std::vector<std::string> lines;
-  for (int i : points) {
-    const Scene scene = scene_of(o, grid[std::size_t(i)]);
-    Progress progress(Progress::wanted(o.quiet), scene.simulated_frames(),
-                      fmt::format("point {} ({})", i, grid[std::size_t(i)].label));
-    const RunRecord run = i == 0 ? reference : record_run(scene, &progress);
-    ReportRow row = describe(scene, run, reference, nullptr, window);
-    row.point = i;
-    row.label = grid[std::size_t(i)].label;
-    lines.push_back(csv_line(row));
-    if (!o.quiet)
-      fmt::print(stderr, "point {}: {} done, {:.1f} ms/frame\n", i, row.label, row.ms_per_frame);
+  std::map<std::pair<int, int>, std::string> lines;
+  for (int seed = 0; seed < o.seeds; ++seed) {
+    // Read from the saved file when one is given and there, else run (and saved there).
+    const RunRecord reference =
+        reference_run(o, grid, reference_file_of(o.reference_file, seed), seed);
+    for (int i : points) {
+      const Scene scene = scene_of(o, grid[std::size_t(i)], seed);
+      const std::string of_seed = o.seeds > 1 ? fmt::format(", seed {}", scene.seed) : "";
+      Progress progress(Progress::wanted(o.quiet), scene.simulated_frames(),
+                        fmt::format("point {} ({}){}", i, grid[std::size_t(i)].label, of_seed));
+      const RunRecord run = i == 0 ? reference : record_run(scene, &progress);
+      ReportRow row = describe(scene, run, reference, nullptr, window);
+      row.point = i;
+      row.label = grid[std::size_t(i)].label;
+      lines[{i, seed}] = csv_line(row);
+      if (!o.quiet)
+        fmt::print(stderr, "point {}: {}{} done, {:.1f} ms/frame\n", i, row.label, of_seed,
+                   row.ms_per_frame);
+    }
   }
-  return lines;
+  std::vector<std::string> rows;
+  rows.reserve(lines.size());
+  for (auto& [key, line] : lines) rows.push_back(std::move(line));
+  return rows;
 }
 
 // The command line minus what only the parent does (-o, --plot, --jobs, --quiet).
@@ -210,6 +269,7 @@ std::vector<std::string> point_command(const SweepOptions& o) {
   add("--infill", o.infill);
   add("--backend", o.backend);
   if (o.frames) add("--frames", std::to_string(*o.frames));
+  if (o.seeds > 1) add("--seeds", std::to_string(o.seeds));
   add("--horizon", fmt::format("{}", o.horizon_s));
   for (const std::string& set : o.sets) add("--set", set);
   return args;
@@ -301,14 +361,16 @@ int slurm_sweep(const SweepOptions& o) {
   files.check();
   const std::string csv = fs::absolute(o.output).lexically_normal().string();
   const std::string plot = o.plot.empty() ? "" : fs::absolute(o.plot).lexically_normal().string();
-  fmt::print("{}", write_slurm_sweep({o.slurm_dir, o.submit, o.slurm_args}, point_command(o),
-                                     int(grid.size()), csv, plot));
+  fmt::print("{}", write_slurm_sweep({o.slurm_dir, o.submit, o.slurm_args, o.seeds},
+                                     point_command(o), int(grid.size()), csv, plot));
   return int(ExitCode::kSuccess);
 }
 
 }  // namespace
 
 int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
+  if (o.seeds < 1 || o.seeds > 64)
+    throw UserError(fmt::format("--seeds {}: expected 1 to 64 seeds", o.seeds));
   if (o.list) {  // the points, as --point and the CSV number them; nothing runs
     const std::vector<SweepPoint> grid = sweep_grid(o);
     for (const SweepPoint& point : grid) scene_of(o, point);  // each checked, as a run would
@@ -333,23 +395,27 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
   files.output(o.output, "the sweep CSV");
   files.output(o.plot, "--plot");
   if (!o.plot.empty()) files.output(partial_image_of(o.plot), "--plot (while drawn)");
-  if (!o.reference_file.empty()) {  // read when it is there, written when it is not
+  for (int seed = 0; seed < o.seeds && !o.reference_file.empty(); ++seed) {
+    // Read when it is there, written when it is not; a seed's own file after the first.
+    const std::string file = reference_file_of(o.reference_file, seed);
     std::error_code ec;
-    if (fs::exists(o.reference_file, ec))
-      files.input(o.reference_file, "--reference-file");
+    if (fs::exists(file, ec))
+      files.input(file, "--reference-file");
     else
-      files.output(o.reference_file, "--reference-file");
+      files.output(file, "--reference-file");
   }
   files.check();
   std::vector<std::string> lines;
   std::string plot_title;  // lattice, frames and duration, when the scene is known here
   if (!o.merge.empty()) {  // join the CSVs of points run separately
-    std::map<int, std::string> by_point;
+    std::map<std::pair<int, std::uint64_t>, std::string> by_point;  // by point, then seed
     for (const std::string& file : o.merge)
-      for (const std::string& line : csv_rows(file))
-        if (!by_point.emplace(point_of_line(line), line).second)
-          throw UserError(
-              fmt::format("--merge {}: point {} appears twice", file, point_of_line(line)));
+      for (const std::string& line : csv_rows(file)) {
+        const std::uint64_t seed = parse_csv_line(line).seed;
+        if (!by_point.emplace(std::pair{point_of_line(line), seed}, line).second)
+          throw UserError(fmt::format("--merge {}: point {} appears twice (seed {})", file,
+                                      point_of_line(line), seed));
+      }
     for (const auto& [point, line] : by_point) lines.push_back(line);
   } else {
     if (!(o.horizon_s > 0.0))
@@ -389,7 +455,8 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
       const std::string reference_file =
           o.reference_file.empty() ? (dir / "reference.rec").string() : o.reference_file;
       try {
-        reference_run(o, grid, reference_file);
+        for (int seed = 0; seed < o.seeds; ++seed)
+          reference_run(o, grid, reference_file_of(reference_file, seed), seed);
       } catch (const Interrupted&) {
         fs::remove_all(dir, ec);
         throw Interrupted(fmt::format(
@@ -418,7 +485,13 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     std::vector<ReportRow> rows;
     rows.reserve(lines.size());
     for (const std::string& line : lines) rows.push_back(parse_csv_line(line));
-    fmt::print("{}", text_table(rows));
+    const bool seeded = std::any_of(rows.begin(), rows.end(),
+                                    [&](const ReportRow& r) { return r.seed != rows[0].seed; });
+    std::vector<ReportRow> shown = rows;
+    if (seeded)
+      for (ReportRow& r : shown) r.label += fmt::format(" seed {}", r.seed);
+    fmt::print("{}", text_table(shown));
+    if (seeded) fmt::print("{}", seed_summary(rows));
   }
   if (!o.quiet)
     fmt::print("sweep: {} points -> {}{}\n", lines.size(), o.output,

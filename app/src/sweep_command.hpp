@@ -27,6 +27,9 @@ struct SweepOptions {
   bool submit = false;    ///< --submit: and sbatch them
   std::vector<std::string> slurm_args;  ///< --slurm-arg: extra #SBATCH options
   bool quiet = false;
+  /// --seeds N: every point (the references too) at seeds scene.seed .. +N-1,
+  /// each measured against the reference of its own seed; a row per point and seed.
+  int seeds = 1;
 };
 /// argv: the command line that started this sweep (children re-run it with --point).
 int sweep_command(const SweepOptions& options, const std::vector<std::string>& argv);

@@ -3,7 +3,8 @@
 # frame, log axes, the Pareto front of the hybrid points, the references.
 # Right: the strain the paper infill's relaxation cap buys (max link strain
 # against the cap, one line per coarse lattice and substep count), the smooth
-# infill's points beside it.
+# infill's points beside it. A sweep with --seeds N has N rows a point: each
+# point is drawn at its seeds' mean, with the seed-to-seed sd as an error bar.
 import csv
 import sys
 
@@ -26,6 +27,31 @@ def value(row, key):
         return None
 
 
+def over_seeds(rows):
+    """One row a point: the mean over its seeds' rows, the error's sample sd in error_sd."""
+    by_point = {}
+    for r in rows:
+        by_point.setdefault(r["point"], []).append(r)
+    merged = []
+    for group in by_point.values():
+        r = dict(group[0])
+        r["seeds"] = len(group)
+        r["error_sd"] = 0.0
+        for key in ("ms_per_frame", error_key, "max_strain"):
+            values = [value(g, key) for g in group if value(g, key) is not None]
+            if values:
+                mean = sum(values) / len(values)
+                r[key] = repr(mean)
+                if key == error_key and len(values) > 1:
+                    r["error_sd"] = (sum((v - mean) ** 2 for v in values) / (len(values) - 1)) ** 0.5
+        merged.append(r)
+    return merged
+
+
+seeds = max([sum(1 for q in rows if q["point"] == r["point"]) for r in rows] or [1])
+rows = over_seeds(rows)
+
+
 def short_label(r):
     """coarse lattice, s = substeps per frame, r = the paper infill's relaxation cap."""
     label = f"{r['coarse']} s{r['substeps']}"
@@ -39,8 +65,10 @@ fig, (ax, ax_strain) = plt.subplots(1, 2, figsize=(13, 5.5), dpi=100,
 hybrid = [r for r in rows if r["mode"] == "hybrid" and value(r, error_key)]
 points = sorted(((value(r, "ms_per_frame"), value(r, error_key), r) for r in hybrid),
                 key=lambda p: p[0])
-ax.scatter([p[0] for p in points], [1e3 * p[1] for p in points], color="tab:blue", zorder=3,
-           label="hybrid")
+ax.errorbar([p[0] for p in points], [1e3 * p[1] for p in points],
+            yerr=[1e3 * p[2]["error_sd"] for p in points] if seeds > 1 else None, fmt="o",
+            color="tab:blue", zorder=3, capsize=3,
+            label="hybrid" if seeds == 1 else f"hybrid (mean +- sd over {seeds} seeds)")
 ax.set_xscale("log")
 ax.set_yscale("log")
 front, best = [], float("inf")
@@ -53,8 +81,9 @@ if front:
             drawstyle="steps-post", label="Pareto front")
 for r in rows:
     if r["mode"] == "bullet" and value(r, error_key):
-        ax.scatter([value(r, "ms_per_frame")], [1e3 * value(r, error_key)], marker="s",
-                   color="tab:red", zorder=3, label="Bullet, full lattice")
+        ax.errorbar([value(r, "ms_per_frame")], [1e3 * value(r, error_key)],
+                    yerr=[1e3 * r["error_sd"]] if seeds > 1 else None, fmt="s", capsize=3,
+                    color="tab:red", zorder=3, label="Bullet, full lattice")
     if r["mode"] == "mass-spring":
         ax.axvline(value(r, "ms_per_frame"), color="k", linestyle="--",
                    label="mass-spring reference (error 0)")

@@ -47,6 +47,14 @@ std::vector<std::vector<std::string>> without_timing(std::vector<std::vector<std
   return csv;
 }
 
+// `sweep --coarse 5x7 --quiet` on the small lattice, then `extra`.
+std::vector<std::string> small_5x7_sweep(const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"sweep", "--coarse", "5x7", "--quiet"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
 TEST(Compare, WritesTheContractColumnsForEachRun) {
   TempDir dir;
   std::vector<std::string> args = {"compare", "-o", "report.csv"};
@@ -240,18 +248,65 @@ TEST(Sweep, PointsRunAloneAndMergedEqualTheWholeSweep) {
   EXPECT_NE(twice.err.find("point 0 appears twice"), std::string::npos) << twice.err;
 }
 
+// --seeds N: every point at N seeds, each against the reference of its own
+// seed. The second seed's rows are a plain sweep's at that seed (paired, not
+// pooled), and --jobs, --point + --merge give the same rows as one process.
+TEST(Sweep, SeedsRunEveryPointAgainstTheReferenceOfItsSeed) {
+  TempDir dir;
+  const auto with = [](const std::vector<std::string>& extra) { return small_5x7_sweep(extra); };
+  const ProcessResult whole = run_flag_sim(with({"--seeds", "2", "-o", "whole.csv"}), dir.path());
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto csv = without_timing(read_csv(dir.file("whole.csv")));
+  ASSERT_EQ(csv.size(), 7u);  // header, 3 points x 2 seeds, by point then seed
+  const std::size_t seed = column(csv, "seed"), point = column(csv, "point");
+  for (std::size_t r = 1; r < csv.size(); ++r) {
+    EXPECT_EQ(csv[r][point], std::to_string((r - 1) / 2));
+    EXPECT_EQ(csv[r][seed], std::to_string(1 + (r - 1) % 2));
+  }
+  EXPECT_NE(whole.out.find("hybrid 5x7 seed 2"), std::string::npos) << whole.out;
+  EXPECT_NE(whole.out.find("over the seeds, mean +- seed-to-seed sd"), std::string::npos)
+      << whole.out;
+  EXPECT_NE(whole.out.find("  hybrid 5x7                             2 seed(s): flap "),
+            std::string::npos)
+      << whole.out;
+  // Seed 2 of the study is the plain sweep at scene.seed = 2, row for row.
+  ASSERT_EQ(run_flag_sim(with({"--set", "scene.seed=2", "-o", "two.csv"}), dir.path()).exit_code,
+            0);
+  const auto two = without_timing(read_csv(dir.file("two.csv")));
+  ASSERT_EQ(two.size(), 4u);
+  for (std::size_t r = 1; r < two.size(); ++r) EXPECT_EQ(two[r], csv[2 * r]) << "row " << r;
+  // The same rows from workers, and from points run alone and merged; each
+  // seed's reference saved beside the first's.
+  ASSERT_EQ(
+      run_flag_sim(with({"--seeds", "2", "--jobs", "2", "-o", "jobs.csv"}), dir.path()).exit_code,
+      0);
+  EXPECT_EQ(without_timing(read_csv(dir.file("jobs.csv"))), csv);
+  std::vector<std::string> merge = {"sweep", "--quiet", "-o", "merged.csv", "--merge"};
+  for (int p = 0; p < 3; ++p) {
+    const std::string file = "p" + std::to_string(p) + ".csv";
+    ASSERT_EQ(run_flag_sim(with({"--seeds", "2", "--point", std::to_string(p), "--reference-file",
+                                 "ref.rec", "-o", file}),
+                           dir.path())
+                  .exit_code,
+              0);
+    merge.push_back(file);
+  }
+  EXPECT_TRUE(fs::exists(dir.file("ref.rec")));
+  EXPECT_TRUE(fs::exists(dir.file("ref.rec.seed1")));
+  ASSERT_EQ(run_flag_sim(merge, dir.path()).exit_code, 0);
+  EXPECT_EQ(without_timing(read_csv(dir.file("merged.csv"))), csv);
+  const ProcessResult none = run_flag_sim(with({"--seeds", "0", "-o", "n.csv"}), dir.path());
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("--seeds 0: expected 1 to 64 seeds"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(dir.file("n.csv")));
+}
+
 // The reference runs once and is shared: a point given --reference-file reads
 // it (a file that is not a record is refused, so nothing was re-run), and its
 // rows are those of a point that ran the reference itself.
 TEST(Sweep, PointsShareOneSavedReference) {
   TempDir dir;
-  std::vector<std::string> base = {"sweep", "--coarse", "5x7", "--quiet"};
-  base.insert(base.end(), kSmall.begin(), kSmall.end());
-  auto with = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = base;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-  };
+  const auto with = [](const std::vector<std::string>& extra) { return small_5x7_sweep(extra); };
   ASSERT_EQ(run_flag_sim(with({"-o", "alone.csv", "--point", "2"}), dir.path()).exit_code, 0);
   ASSERT_EQ(run_flag_sim(with({"-o", "ref.csv", "--point", "0", "--reference-file", "ref.rec"}),
                          dir.path())
