@@ -242,8 +242,10 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   // on it), then across, between the two coarse lines on either side.
   // (The weights along the rows depend on the lattice only: kept from the
   // constructor, row_link_taps_ and col_node_taps_.)
-  const auto upper = [](double stretch) {
-    return 1.0 + std::min(kStretchCap, std::max(kBand, stretch));
+  // The band around the target: the coarse stretch, none where compressed.
+  const auto band = [](double stretch) {
+    const double target = 1.0 + std::clamp(stretch, 0.0, kStretchCap);
+    return LinkBand{target * (1.0 - kBand), target * (1.0 + kBand)};
   };
   LinkField<LinkBand>& bands = projection_.bands();
   const int J = lattice_.rows, K = lattice_.cols;
@@ -265,7 +267,7 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
     const Taps w = taps_at(double(j) / rs, jc_count);
     LinkBand* out = &bands.row(j, 0);
     for (int k = 0; k + 1 < K; ++k)
-      out[k] = {1.0 - kBand, upper(at(w, &along_[std::size_t(k)], std::size_t(K - 1)))};
+      out[k] = band(at(w, &along_[std::size_t(k)], std::size_t(K - 1)));
   }
   // Column links: coarse column links lie on coarse columns kc, midpoints at jc + 1/2.
   for (int j = 0; j + 1 < J; ++j) {
@@ -277,8 +279,7 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   for (int j = 0; j + 1 < J; ++j) {
     const double* line = &along_[std::size_t(j) * std::size_t(kc_count)];
     LinkBand* out = &bands.col(j, 0);
-    for (int k = 0; k < K; ++k)
-      out[k] = {1.0 - kBand, upper(at(col_node_taps_[std::size_t(k)], line, 1))};
+    for (int k = 0; k < K; ++k) out[k] = band(at(col_node_taps_[std::size_t(k)], line, 1));
   }
 }
 
