@@ -26,6 +26,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   libbullet-dev libosmesa6-dev libpng-dev ffmpeg
   python3-h5py python3-numpy python3-matplotlib
+  pybind11-dev python3-dev
 )
 if ((test_deps)); then
   # tests/app/paraview_test.py: ParaView's default XDMF reader, run by pvpython;

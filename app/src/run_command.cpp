@@ -71,7 +71,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 int run_command(const RunOptions& options) {
   if (options.frames && *options.frames < 1)
     throw UserError(fmt::format("--frames {}: expected at least 1 frame", *options.frames));
-  const Scene scene = load_scene(options.scene_path, overrides_of(options));
+  const Scene scene =
+      options.scene_text
+          ? parse_scene(*options.scene_text,
+                        options.scene_path.empty() ? "<scene text>" : options.scene_path,
+                        overrides_of(options))
+          : load_scene(options.scene_path, overrides_of(options));
   // A render is checked before the run: a bad --size must not cost a simulation.
   std::optional<RenderPlan> render_plan;
   if (!options.render.empty()) {

@@ -9,7 +9,10 @@
 namespace flagsim::app {
 
 struct RunOptions {
-  std::string scene_path;                     ///< empty: the embedded default scene
+  std::string scene_path;  ///< empty: the embedded default scene
+  /// The scene as TOML text instead of a file (the Python module's
+  /// Simulation.run), named `scene_path` in messages when that is given.
+  std::optional<std::string> scene_text;
   std::string output_path;                    ///< -o; empty: output.file, else out/<name>.h5
   std::optional<std::string> mode;            ///< --mode
   std::optional<long long> frames;            ///< --frames

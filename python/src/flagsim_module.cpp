@@ -1,0 +1,205 @@
+// The Python module `flagsim` (its C++ half, `flagsim._flagsim`; the package's
+// __init__.py turns dicts into TOML and gives the names the contract lists).
+//
+// A Simulation is a scene compiled into a running simulation: step() advances
+// it by output frames, positions / velocities / coarse_positions are numpy
+// arrays that view the simulation's own buffers (read-only, no copy: they
+// follow every step), run(path) writes the scene's whole run as `flag-sim run`
+// would. infill() is the hybrid's infill alone, for an engine that simulates
+// its own coarse cloth. Errors keep the command line's messages: a bad scene
+// or argument is ValueError, a failed write OSError, a diverged frame
+// RuntimeError.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/scene.hpp"
+#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/core/strain.hpp"
+#include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/infill/cell_grid.hpp"
+#include "flagsim/infill/infill_method.hpp"
+#include "run_command.hpp"
+
+namespace py = pybind11;
+
+namespace flagsim::python {
+namespace {
+
+// A [rows, cols, 3] float64 array over `values` (row-major nodes), owned by `owner`, read-only.
+py::array_t<double> node_view(std::span<const Vec3> values, int rows, int cols,
+                              const py::object& owner) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  py::array_t<double> array(
+      {py::ssize_t(rows), py::ssize_t(cols), py::ssize_t(3)},
+      {py::ssize_t(cols * sizeof(Vec3)), py::ssize_t(sizeof(Vec3)), py::ssize_t(sizeof(double))},
+      values.empty() ? nullptr : values.front().data(), owner);
+  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return array;
+}
+
+class PySimulation {
+ public:
+  /// @param toml_text  the scene (the embedded default when None)
+  /// @param source     the name messages give it (the file's path, or "<scene text>")
+  /// @param overrides  "KEY=VALUE" strings, as --set
+  PySimulation(std::optional<std::string> toml_text, std::string source,
+               std::vector<std::string> overrides)
+      : text_(toml_text ? *toml_text : std::string(default_scene_toml())),
+        source_(toml_text ? std::move(source) : std::string(kDefaultSceneName)),
+        overrides_(std::move(overrides)),
+        scene_(parse_scene(text_, source_, overrides_)),
+        simulation_(hybrid::make_simulation(scene_)) {}
+
+  void step(int frames) {
+    if (frames < 0) throw UserError(fmt_frames(frames));
+    for (int i = 0; i < frames; ++i) {
+      if (diverged_) throw std::runtime_error("the simulation diverged earlier: " + *diverged_);
+      simulation_->advance_frame(nullptr);
+      ++frame_;
+      const StrainStats strain = link_strain(simulation_->lattice(), simulation_->positions());
+      if (auto why = hybrid::frame_divergence(*simulation_, scene_, strain)) {
+        diverged_ = fmt_diverged(*why);
+        throw std::runtime_error(*diverged_);
+      }
+    }
+  }
+  double time() const { return frame_ / scene_.fps; }
+  int frame() const { return frame_; }
+  const Scene& scene() const { return scene_; }
+  const hybrid::Simulation& simulation() const { return *simulation_; }
+  std::pair<int, int> coarse_shape() const {
+    const auto [rows, cols] = simulation_->coarse_indices();
+    return {int(rows.size()), int(cols.size())};
+  }
+  /// The scene's whole run into `path`, as `flag-sim run SCENE -o PATH`.
+  int run(const std::string& path, bool quiet) const {
+    app::RunOptions options;
+    options.scene_text = text_;
+    if (source_ != kDefaultSceneName && source_ != "<scene text>") options.scene_path = source_;
+    options.sets = overrides_;
+    options.output_path = path;
+    options.quiet = quiet;
+    return app::run_command(options);
+  }
+
+ private:
+  static std::string fmt_frames(int frames) {
+    return "step(frames=" + std::to_string(frames) + "): expected 0 or more frames";
+  }
+  std::string fmt_diverged(const std::string& why) const {
+    return "diverged at t = " + std::to_string(time()) + " s (frame " + std::to_string(frame_) +
+           "): " + why;
+  }
+
+  std::string text_, source_;
+  std::vector<std::string> overrides_;
+  Scene scene_;
+  std::unique_ptr<hybrid::Simulation> simulation_;
+  int frame_ = 0;
+  std::optional<std::string> diverged_;
+};
+
+// The hybrid's infill alone: dense positions [J, K, 3] from coarse ones [Jc, Kc, 3].
+py::array_t<double> infill(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& coarse,
+    std::pair<int, int> fine, std::pair<double, double> size, const std::string& pin,
+    const std::string& solver) {
+  if (coarse.ndim() != 3 || coarse.shape(2) != 3)
+    throw UserError("infill: coarse must have the shape [Jc, Kc, 3] (m)");
+  const int jc = int(coarse.shape(0)), kc = int(coarse.shape(1));
+  const auto [j, k] = fine;
+  if (jc < 2 || kc < 2 || j < jc || k < kc || (j - 1) % (jc - 1) != 0 || (k - 1) % (kc - 1) != 0)
+    throw UserError("infill: fine=(" + std::to_string(j) + ", " + std::to_string(k) +
+                    ") is not a refinement of the coarse lattice " + std::to_string(jc) + " x " +
+                    std::to_string(kc) + " (each side's links a multiple of the coarse ones)");
+  if (!(size.first > 0.0 && size.second > 0.0))
+    throw UserError("infill: size=(width, height) must be positive lengths (m)");
+  const std::optional<PinSet> pins = value_in(kPinNames, pin);
+  if (!pins)
+    throw UserError("infill: pin=\"" + pin + "\": expected left, right, top, corners or none");
+  const std::optional<InfillSolverKind> kind = value_in(kInfillSolverNames, solver);
+  if (!kind) throw UserError("infill: solver=\"" + solver + "\": expected smooth or paper");
+  // The rest rectangle as a flag's: width along the rows, height down the columns.
+  const Lattice lattice = Lattice::rectangle(j, k, size.first, size.second, Vec3::Zero());
+  const infill::CellGrid grid = infill::CellGrid::of(lattice, jc, kc);
+  infill::InfillOptions options;
+  options.solver = *kind;
+  const std::unique_ptr<infill::InfillMethod> method = infill::make_infill(lattice, grid, options);
+  method->hold(physics::pinned_nodes(lattice, *pins));
+  std::vector<Vec3> coarse_m(std::size_t(jc) * std::size_t(kc));
+  const auto c = coarse.unchecked<3>();
+  for (int a = 0; a < jc; ++a)
+    for (int b = 0; b < kc; ++b)
+      coarse_m[std::size_t(a) * std::size_t(kc) + std::size_t(b)] =
+          Vec3(c(a, b, 0), c(a, b, 1), c(a, b, 2));
+  // Starts from the rest lattice; the smooth infill depends on the coarse nodes alone.
+  std::vector<Vec3> dense = lattice.rest_positions();
+  method->fill(coarse_m, dense, nullptr);
+  py::array_t<double> out({py::ssize_t(j), py::ssize_t(k), py::ssize_t(3)});
+  auto o = out.mutable_unchecked<3>();
+  for (int a = 0; a < j; ++a)
+    for (int b = 0; b < k; ++b)
+      for (int d = 0; d < 3; ++d)
+        o(a, b, d) = dense[std::size_t(a) * std::size_t(k) + std::size_t(b)][d];
+  return out;
+}
+
+}  // namespace
+}  // namespace flagsim::python
+
+PYBIND11_MODULE(_flagsim, m) {
+  using flagsim::python::PySimulation;
+  m.doc() = "flag-sim's simulations, from Python (the C++ half of the flagsim package)";
+  py::register_exception<flagsim::UserError>(m, "SceneError", PyExc_ValueError);
+  py::register_exception<flagsim::IoError>(m, "WriteError", PyExc_OSError);
+  py::class_<PySimulation>(m, "Simulation")
+      .def(py::init<std::optional<std::string>, std::string, std::vector<std::string>>(),
+           py::arg("toml_text"), py::arg("source"), py::arg("overrides"))
+      .def("step", &PySimulation::step, py::arg("frames") = 1)
+      .def_property_readonly("time", &PySimulation::time)
+      .def_property_readonly("frame", &PySimulation::frame)
+      .def_property_readonly("fps", [](const PySimulation& s) { return s.scene().fps; })
+      .def_property_readonly(
+          "mode", [](const PySimulation& s) { return std::string(to_string(s.scene().mode)); })
+      .def_property_readonly("shape",
+                             [](const PySimulation& s) {
+                               const flagsim::Lattice& l = s.simulation().lattice();
+                               return std::pair<int, int>(l.rows, l.cols);
+                             })
+      .def_property_readonly("positions",
+                             [](const py::object& self) {
+                               const PySimulation& s = self.cast<const PySimulation&>();
+                               const flagsim::Lattice& l = s.simulation().lattice();
+                               return flagsim::python::node_view(s.simulation().positions(), l.rows,
+                                                                 l.cols, self);
+                             })
+      .def_property_readonly("velocities",
+                             [](const py::object& self) {
+                               const PySimulation& s = self.cast<const PySimulation&>();
+                               const flagsim::Lattice& l = s.simulation().lattice();
+                               return flagsim::python::node_view(s.simulation().velocities(),
+                                                                 l.rows, l.cols, self);
+                             })
+      .def_property_readonly("coarse_positions",
+                             [](const py::object& self) -> py::object {
+                               const PySimulation& s = self.cast<const PySimulation&>();
+                               const auto [rows, cols] = s.coarse_shape();
+                               if (rows == 0) return py::none();
+                               return flagsim::python::node_view(s.simulation().coarse_positions(),
+                                                                 rows, cols, self);
+                             })
+      .def("run", &PySimulation::run, py::arg("path"), py::arg("quiet") = true);
+  m.def("infill", &flagsim::python::infill, py::arg("coarse"), py::arg("fine"),
+        py::arg("size") = std::pair<double, double>(1.5, 1.0), py::arg("pin") = "left",
+        py::arg("solver") = "smooth");
+}

@@ -1,0 +1,133 @@
+#!/usr/bin/python3
+"""The Python module `flagsim` (contract: "Library and Python") against the command line.
+
+Usage: flagsim_module_test.py FLAG_SIM_BINARY   (with PYTHONPATH holding build/python)
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import h5py
+import numpy as np
+
+import flagsim
+
+FLAG_SIM = None
+SMALL = {"flag.fine": [33, 49]}  # the default scene (hybrid, 9 x 13 coarse) on a small lattice
+
+
+def cli_frames(*args, frames=4):
+    """The command line's /frames/positions and /coarse/positions of `flag-sim run ARGS`."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "cli.h5")
+        subprocess.run([FLAG_SIM, "run", "--quiet", "--frames", str(frames), "-o", out, *args],
+                       check=True, stdout=subprocess.DEVNULL)
+        with h5py.File(out, "r") as f:
+            return f["/frames/positions"][()], f["/coarse/positions"][()]
+
+
+class Simulation(unittest.TestCase):
+    def test_each_frame_is_the_command_lines_bit_for_bit(self):
+        positions, coarse = cli_frames("--set", "flag.fine=[33,49]")
+        sim = flagsim.Simulation(None, overrides=SMALL)
+        self.assertEqual(sim.shape, (33, 49))
+        self.assertEqual(sim.mode, "hybrid")
+        for frame in range(4):
+            if frame:
+                sim.step()
+            # The file stores float32 (contract): the same rounding of the same doubles.
+            np.testing.assert_array_equal(sim.positions.astype(np.float32), positions[frame])
+            np.testing.assert_array_equal(sim.coarse_positions.astype(np.float32), coarse[frame])
+        self.assertAlmostEqual(sim.time, 3 / 30.0, places=12)
+
+    def test_the_arrays_view_the_state_and_follow_each_step(self):
+        sim = flagsim.Simulation(None, overrides=SMALL)
+        view = sim.positions
+        before = view.copy()
+        sim.step(2)
+        self.assertEqual(view.ctypes.data, sim.positions.ctypes.data)  # no copy
+        self.assertGreater(np.abs(view - before).max(), 1e-4)  # moved with the state
+        self.assertFalse(view.flags.writeable)  # the state is changed by step(), not by hand
+        with self.assertRaises(ValueError):
+            view[0, 0, 0] = 1.0
+        del sim  # the view keeps the simulation alive
+        self.assertTrue(np.isfinite(view).all())
+
+    def test_a_file_a_toml_string_and_a_dict_are_the_same_scene(self):
+        scene = ('[scene]\nname = "py"\nmode = "hybrid"\nduration = 1.0\n'
+                 '[flag]\nfine = [17, 25]\ncoarse = [5, 7]\ninitial_perturbation = 0.01\n'
+                 '[wind]\nvelocity = [8.0, 0.0, 0.0]\n')
+        as_dict = {"scene": {"name": "py", "mode": "hybrid", "duration": 1.0},
+                   "flag": {"fine": [17, 25], "coarse": [5, 7], "initial_perturbation": 0.01},
+                   "wind": {"velocity": [8.0, 0.0, 0.0]}}
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "py.toml")
+            with open(path, "w") as f:
+                f.write(scene)
+            runs = [flagsim.Simulation(s) for s in (path, scene, as_dict)]
+            for sim in runs:
+                sim.step(5)
+            for sim in runs[1:]:
+                np.testing.assert_array_equal(sim.positions, runs[0].positions)
+
+    def test_run_writes_the_command_lines_file_and_never_over_its_scene(self):
+        positions, _ = cli_frames("--set", "flag.fine=[33,49]", "--set", "scene.duration=0.1")
+        sim = flagsim.Simulation(None, overrides={**SMALL, "scene.duration": 0.1})
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "py.h5")
+            self.assertEqual(sim.run(out), 0)
+            with h5py.File(out, "r") as f:
+                np.testing.assert_array_equal(f["/frames/positions"][()], positions)
+            scene = os.path.join(tmp, "s.toml")
+            with open(scene, "w") as f:
+                f.write("[scene]\nduration = 0.1\n[flag]\nfine = [17, 25]\ncoarse = [5, 7]\n")
+            with self.assertRaisesRegex(ValueError, "s.toml"):
+                flagsim.Simulation(scene).run(scene)
+            with open(scene) as f:
+                self.assertTrue(f.read().startswith("[scene]"))  # untouched
+
+    def test_bad_scenes_raise_the_command_lines_messages(self):
+        with self.assertRaisesRegex(ValueError, r"flag.coarse: \[9, 13\] does not divide"):
+            flagsim.Simulation(None, overrides={"flag.fine": [33, 50]})
+        with self.assertRaisesRegex(ValueError, "wind.velocty.*did you mean"):
+            flagsim.Simulation(None, overrides={"wind.velocty": [1, 0, 0]})
+        with self.assertRaisesRegex(ValueError, "<scene text>"):
+            flagsim.Simulation("[flag]\nfine = \n")
+        with self.assertRaises(ValueError):
+            flagsim.Simulation(None, overrides={"flag.size": [float("nan"), 1.0]})
+        with self.assertRaises(ValueError):
+            flagsim.Simulation(42)
+        with self.assertRaises(FileNotFoundError):
+            flagsim.Simulation("no/such/scene.toml")
+
+    def test_a_diverged_frame_raises_and_stops(self):
+        sim = flagsim.Simulation(None, overrides={**SMALL, "flag.stretch_modulus": 1.0,
+                                                  "limits.max_strain": 0.05})
+        with self.assertRaisesRegex(RuntimeError, "diverged at t = .*max link strain"):
+            sim.step(60)
+        with self.assertRaisesRegex(RuntimeError, "diverged earlier"):
+            sim.step()
+
+
+class Infill(unittest.TestCase):
+    def test_the_infill_alone_gives_the_hybrids_dense_frame(self):
+        sim = flagsim.Simulation(None, overrides=SMALL)
+        sim.step(5)
+        dense = flagsim.infill(sim.coarse_positions, fine=(33, 49), size=(1.5, 1.0))
+        np.testing.assert_array_equal(dense, sim.positions)
+
+    def test_bad_arguments(self):
+        coarse = np.zeros((9, 13, 3))
+        with self.assertRaisesRegex(ValueError, "not a refinement"):
+            flagsim.infill(coarse, fine=(33, 50))
+        with self.assertRaisesRegex(ValueError, "shape"):
+            flagsim.infill(np.zeros((9, 13)), fine=(33, 49))
+        with self.assertRaisesRegex(ValueError, "pin"):
+            flagsim.infill(coarse, fine=(33, 49), pin="middle")
+
+
+if __name__ == "__main__":
+    FLAG_SIM = sys.argv.pop(1)
+    unittest.main(verbosity=2)
