@@ -246,7 +246,8 @@ int compare_command(const CompareOptions& options) {
   reference_scenes.reserve(modes.size());
   for (const Mode mode : modes)
     reference_scenes.push_back(load_scene(options.scene_path, with_mode(sets, mode)));
-  check_report_path(options.output);
+  CreatedDirectories directories;  // -o in a new directory: made, and removed if nothing is written
+  check_report_path(options.output, &directories);
   FileRoles files;
   files.input(options.scene_path, "the scene");
   files.output(options.output, "the report");
@@ -255,7 +256,7 @@ int compare_command(const CompareOptions& options) {
   const MetricWindow window{options.horizon_s};
   const InterruptGuard interrupt;  // a signal stops the run in progress: exit 130, no report
   // A progress line per run on a terminal: the full-lattice references can take minutes.
-  const bool show = Progress::wanted(false);
+  const bool show = Progress::wanted(options.quiet);
   Progress hybrid_progress(show, hybrid_scene.simulated_frames(), "hybrid");
   const RunRecord hybrid = record_run(hybrid_scene, &hybrid_progress);
   Progress tracking_progress(show, int(hybrid.frames.size()), "tracking");

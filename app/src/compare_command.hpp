@@ -19,6 +19,7 @@ struct CompareOptions {
   /// their seed-to-seed spread, and whether the reference is converged (against
   /// the same reference on the lattice of every other node, same seeds).
   std::optional<long long> seeds;
+  bool quiet = false;  ///< --quiet: no progress lines
 };
 int compare_command(const CompareOptions& options);
 

@@ -1,5 +1,6 @@
 // The flag-sim command line (contract: "Command line").
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include <CLI/CLI.hpp>
@@ -166,6 +167,7 @@ int run_main(int argc, char** argv) {
                          "What the --eye camera looks at, X,Y,Z in m (default: the run's centre)");
   render_cmd->add_option("--color", render.color,
                          "Colour the shaded cloth by strain or speed (one scale for all frames)");
+  render_cmd->add_flag("-q,--quiet", render.quiet, "No progress line, only the summary");
 
   std::string export_input;
   flagsim::app::ExportOptions export_options;
@@ -195,6 +197,7 @@ int run_main(int argc, char** argv) {
       "--reference", compare.reference,
       "mass-spring (default), bullet, implicit, xpbd, or all (errors against the first)");
   compare_cmd->add_option("-o,--output", compare.output, "Report CSV");
+  compare_cmd->add_flag("-q,--quiet", compare.quiet, "No progress lines");
   compare_cmd
       ->add_option("--seeds", compare.seeds,
                    "Also the flap and mean shape over N seeds with their spread, and whether "
@@ -245,6 +248,15 @@ int run_main(int argc, char** argv) {
   if (const std::optional<std::string> empty = empty_argument(argc, argv))
     return fail(ExitCode::kBadInput,
                 fmt::format("{}: an empty value; give one or leave the option out", *empty));
+  if (argc == 1) {  // bare `flag-sim`: what there is to run, on the one error line
+    std::vector<std::string> names;
+    names.reserve(subcommands.size());
+    for (const CLI::App* sub : subcommands) names.push_back(sub->get_name());
+    return fail(ExitCode::kBadInput,
+                fmt::format("no command given: flag-sim COMMAND, with COMMAND one of {}, help "
+                            "(flag-sim help COMMAND for its options)",
+                            fmt::join(names, ", ")));
+  }
   const bool help = argc >= 2 && std::string_view(argv[1]) == "help";
   const char* command = help ? (argc >= 3 ? argv[2] : nullptr) : (argc >= 2 ? argv[1] : nullptr);
   if (help && (!command || std::string_view(command) == "help")) {

@@ -8,6 +8,7 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "flagsim/core/message.hpp"
 #include "flagsim/data/output_reader.hpp"
 #include "interrupt.hpp"
 #include "python_plot.hpp"
@@ -42,7 +43,7 @@ int plot_command(const std::string& h5_path, const std::string& output) {
   if (!fs::is_directory(dir) || access(dir.c_str(), W_OK) != 0)
     throw UserError(fmt::format("-o {}: cannot write to {}", output, dir.string()));
   draw_plot(stats_plot_script(), {h5_path, output}, 1, output);
-  fmt::print("plotted {} frames of {} -> {}\n", frames, h5_path, output);
+  fmt::print("plotted {} of {} -> {}\n", counted(frames, "frame"), h5_path, output);
   return int(ExitCode::kSuccess);
 }
 

@@ -13,6 +13,7 @@
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/limits.hpp"
+#include "flagsim/core/message.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/data/output_reader.hpp"
@@ -122,6 +123,7 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   const Render* scene_render = scene && scene->render ? &*scene->render : nullptr;
   RenderPlan plan;
   plan.output = request.output;
+  plan.quiet = request.quiet;
   if (plan.output.empty()) throw UserError("render: -o OUT.mp4 or -o DIR is required");
   plan.container = render::container_of(plan.output);
   const bool video = plan.container.has_value();
@@ -300,9 +302,9 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   encode_s += std::chrono::duration<double>(Clock::now() - closing).count();
   const double n = std::max(1, last - first);
   return fmt::format(
-      "rendered {} frames ({}{}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
-      last - first, render::to_string(plan.style), colored, plan.width, plan.height,
-      1e3 * draw_s / n, 1e3 * encode_s / n,
+      "rendered {} ({}{}, {}x{}), {:.1f} ms/frame drawing + {:.1f} ms/frame {} -> {}",
+      counted(last - first, "frame"), render::to_string(plan.style), colored, plan.width,
+      plan.height, 1e3 * draw_s / n, 1e3 * encode_s / n,
       plan.container ? render::to_string(*plan.container) : "PNG", plan.output);
 }
 

@@ -29,6 +29,7 @@ struct RenderRequest {
   std::optional<std::string> color;    ///< --color strain|speed
   std::optional<std::string> eye;      ///< --eye X,Y,Z (m): an explicit camera position
   std::optional<std::string> target;   ///< --target X,Y,Z (m): what it looks at
+  bool quiet = false;                  ///< --quiet: no progress line
 };
 
 /// What the shaded cloth is coloured by (--color).

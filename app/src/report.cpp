@@ -258,15 +258,21 @@ std::string text_table(const std::vector<ReportRow>& rows) {
   return out;
 }
 
-void check_report_path(const std::string& path) {
+void check_report_path(const std::string& path, CreatedDirectories* directories) {
   namespace fs = std::filesystem;
   if (path.empty()) return;
   const fs::path parent = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : ".";
   std::error_code ec;
+  if (directories && !fs::exists(fs::symlink_status(parent, ec)) &&
+      !directories->create(parent.string(), ec))
+    throw UserError(fmt::format("-o {}: cannot create its directory {}: {}", printable(path),
+                                printable(parent.string()), ec.message()));
   if (!fs::is_directory(parent, ec) || access(parent.c_str(), W_OK) != 0 ||
       fs::is_directory(path, ec))
     throw UserError(
-        fmt::format("-o {}: cannot write a report there (does {} exist?)", path, parent.string()));
+        fmt::format("-o {}: cannot write a report there ({} is not a writable "
+                    "directory, or the path is one)",
+                    printable(path), printable(parent.string())));
 }
 
 void write_report(const std::string& path, const std::vector<ReportRow>& rows) {

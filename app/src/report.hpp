@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/run_status.hpp"
 #include "flagsim/core/scene.hpp"
 #include "run_record.hpp"
@@ -58,9 +59,11 @@ ReportRow parse_csv_line(const std::string& line);
 /// The short human-readable table printed to stdout.
 std::string text_table(const std::vector<ReportRow>& rows);
 
-/// Checks that a report can be written at `path` (its directory exists and is
-/// writable); empty is fine. Throws UserError.
-void check_report_path(const std::string& path);
+/// Checks that a report can be written at `path` (its directory is writable,
+/// `path` not a directory); empty is fine. A missing directory is made through
+/// `directories` (which removes it again if the command fails before writing
+/// there), as `run` makes its output's; without it, it is an error. Throws UserError.
+void check_report_path(const std::string& path, CreatedDirectories* directories = nullptr);
 /// The rows as CSV at `path` (csv_header, then a csv_line each); empty: nothing. Throws IoError.
 void write_report(const std::string& path, const std::vector<ReportRow>& rows);
 

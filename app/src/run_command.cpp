@@ -14,6 +14,7 @@
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
+#include "flagsim/core/message.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/core/version.hpp"
@@ -230,9 +231,9 @@ int run_command(const RunOptions& options) {
     if (!rendered.empty()) fmt::print("{}\n", rendered);
     return int(status.exit_code());
   }
-  fmt::print("{}: {} frames of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
-             to_string(status.state), writer.frames_written(), lattice.rows, lattice.cols,
-             to_string(scene.mode), ms_per_frame, simulation->stepping_summary(),
+  fmt::print("{}: {} of {} x {} nodes ({}), {:.2f} ms/frame, {}, max strain {:.3f}% -> {}\n",
+             to_string(status.state), counted(writer.frames_written(), "frame"), lattice.rows,
+             lattice.cols, to_string(scene.mode), ms_per_frame, simulation->stepping_summary(),
              100.0 * max_strain_seen, writer.path());
   for (const std::string& note : scene.notes) fmt::print("{}\n", note);
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);

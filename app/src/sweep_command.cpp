@@ -347,8 +347,9 @@ int slurm_sweep(const SweepOptions& o) {
     throw UserError(fmt::format("--horizon {}: expected a duration > 0 s", o.horizon_s));
   const std::vector<SweepPoint> grid = sweep_grid(o);
   for (const SweepPoint& point : grid) scene_of(o, point);  // checked now, not on the cluster
-  check_report_path(o.output);
-  if (!o.plot.empty()) check_report_path(o.plot);
+  CreatedDirectories directories;  // removed again if nothing is written there
+  check_report_path(o.output, &directories);
+  if (!o.plot.empty()) check_report_path(o.plot, &directories);
   FileRoles files;
   files.input(o.scene_path, "the scene");
   files.output(o.output, "the sweep CSV");
@@ -384,9 +385,10 @@ int sweep_command(const SweepOptions& o, const std::vector<std::string>& argv) {
     throw UserError("--slurm-arg: goes with --slurm DIR");
   if (o.resume && !o.point) throw UserError("--resume: goes with --point I");
   if (!o.slurm_dir.empty()) return slurm_sweep(o);
-  check_report_path(o.output);
+  CreatedDirectories directories;  // -o in a new directory: made, and removed if nothing is written
+  check_report_path(o.output, &directories);
   if (!o.plot.empty()) {
-    check_report_path(o.plot);
+    check_report_path(o.plot, &directories);
     check_plot_tools("--plot");
   }
   FileRoles files;

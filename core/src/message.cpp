@@ -96,4 +96,8 @@ std::string one_line(const std::string& message, std::size_t limit) {
   return line;
 }
 
+std::string counted(long long count, const std::string& noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
 }  // namespace flagsim

@@ -9,6 +9,7 @@
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/core/divergence.hpp"
+#include "flagsim/core/message.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/keyframes.hpp"
 #include "flagsim/infill/strain_limit.hpp"
@@ -31,8 +32,9 @@ std::unique_ptr<physics::ClothIntegrator> integrator_for(const Scene& scene) {
 
 // What the summary line says of an integrator's stepping.
 std::string stepping_of(const physics::ClothIntegrator& physics) {
-  std::string text = fmt::format("{} substeps/frame of {:.3g} s", physics.substeps_per_frame(),
-                                 physics.substep_s());
+  std::string text =
+      fmt::format("{}/frame of {:.3g} s", counted(physics.substeps_per_frame(), "substep"),
+                  physics.substep_s());
   if (const std::string solver = physics.solver_summary(); !solver.empty())
     text += fmt::format(" ({})", solver);
   return text;

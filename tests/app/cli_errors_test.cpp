@@ -257,7 +257,7 @@ const std::vector<BadInput>& cases() {
        with("coarse = [3, 4]\n"),
        {"sweep", "SCENE", "--coarse", "3x4"},
        "-o SWEEP.csv is required"},
-      {"no_subcommand", "", {}, "subcommand"},
+      {"no_subcommand", "", {}, "no command given: flag-sim COMMAND, with COMMAND one of run, "},
   };
   return list;
 }

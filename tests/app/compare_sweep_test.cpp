@@ -184,6 +184,34 @@ std::string line_starting(const std::string& text, const std::string& head) {
   return "";
 }
 
+// -o in a directory that does not exist yet: made, as run makes its output's
+// (issue 33); a command that fails leaves no directory behind; --quiet taken.
+TEST(Compare, MakesTheReportsDirectoryAsRunDoes) {
+  TempDir dir;
+  std::vector<std::string> args = {"compare", "-o", "new/deeper/c.csv", "--quiet"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  const ProcessResult made = run_flag_sim(args, dir.path());
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  EXPECT_TRUE(fs::exists(dir.file("new/deeper/c.csv")));
+  const ProcessResult sweep = run_flag_sim(small_5x7_sweep({"-o", "s/sweep.csv"}), dir.path());
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_TRUE(fs::exists(dir.file("s/sweep.csv")));
+  std::vector<std::string> bad = args;
+  bad[2] = "other/c.csv";
+  bad.insert(bad.end(), {"--set", "flag.fine=[17,26]"});
+  EXPECT_EQ(run_flag_sim(bad, dir.path()).exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir.file("other")));
+  // render takes --quiet too (issue 33: it was refused).
+  ASSERT_EQ(
+      run_flag_sim({"run", "--quiet", "--frames", "2", "--set", "flag.fine=[17,25]", "-o", "r.h5"},
+                   dir.path())
+          .exit_code,
+      0);
+  const ProcessResult render =
+      run_flag_sim({"render", "r.h5", "--quiet", "--size", "64x48", "-o", "frames/"}, dir.path());
+  EXPECT_EQ(render.exit_code, 0) << render.err;
+}
+
 TEST(Compare, SeedsGiveSpreadsAndAConvergenceVerdict) {
   TempDir dir;
   const std::vector<std::string> args = {"compare", "--frames",         "91", "--seeds", "2",

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -93,6 +94,17 @@ TEST(Report, AReportPathMustBeAFileInAWritableDirectory) {
   check_report_path(dir.file("report.csv"));  // a new file in an existing directory
   EXPECT_THROW(check_report_path(dir.file("missing/report.csv")), UserError);
   EXPECT_THROW(check_report_path(dir.path()), UserError);  // a directory, not a file
+  {
+    // Made when the command can make it (as run makes its output's), and
+    // removed again when nothing was written there.
+    CreatedDirectories directories;
+    check_report_path(dir.file("new/deeper/report.csv"), &directories);
+    EXPECT_TRUE(std::filesystem::is_directory(dir.file("new/deeper")));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("new")));
+  dir.write("plain", "a file");
+  CreatedDirectories directories;
+  EXPECT_THROW(check_report_path(dir.file("plain/report.csv"), &directories), UserError);
 }
 
 }  // namespace

@@ -9,6 +9,14 @@
 namespace flagsim {
 namespace {
 
+// "rendered 1 frames", "1 substeps/frame" (issue 33): singular only for one.
+TEST(Message, CountedIsSingularForOneOnly) {
+  EXPECT_EQ(counted(1, "frame"), "1 frame");
+  EXPECT_EQ(counted(0, "frame"), "0 frames");
+  EXPECT_EQ(counted(251, "substep"), "251 substeps");
+  EXPECT_EQ(counted(-1, "frame"), "-1 frames");
+}
+
 TEST(Message, PrintableEscapesControlCharactersAndCuts) {
   EXPECT_EQ(printable("flag.fine"), "flag.fine");
   EXPECT_EQ(printable(std::string("a\tb\x1b[31m", 8)), "a\\x09b\\x1b[31m");

@@ -27,4 +27,7 @@ std::string terminal_safe(const std::string& text);
 /// `limit` bytes with "..." after. What the command line prints after "error: ".
 std::string one_line(const std::string& message, std::size_t limit = limits::kMessageBytes);
 
+/// "1 frame", "2 frames", "0 frames": a count and its noun, singular only for one.
+std::string counted(long long count, const std::string& noun);
+
 }  // namespace flagsim
