@@ -237,11 +237,17 @@ int run_command(const RunOptions& options) {
              100.0 * max_strain_seen, writer.path());
   for (const std::string& note : scene.notes) fmt::print("{}\n", note);
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
-  if (unconverged_frames > 0)
+  if (unconverged_frames > 0 && worst_residual > 0.0)
     fmt::print(
         "note: the infill did not reach its tolerance in {} of {} frames (worst link {:.3f}% "
         "beyond it; /stats/infill_converged)\n",
         unconverged_frames, writer.frames_written(), 100.0 * worst_residual);
+  else if (unconverged_frames > 0)  // stopped at a cap, every link within the tolerance anyway
+    fmt::print(
+        "note: the infill stopped at its cap in {} of {} frames (3.4's infill.relax_iterations "
+        "passes, or 3.1's steps), yet every link ended within its tolerance: "
+        "/stats/infill_converged marks those frames 0, /stats/infill_residual is 0 there\n",
+        unconverged_frames, writer.frames_written());
   if (!rendered.empty()) fmt::print("{}\n", rendered);
   return int(status.exit_code());
 }
