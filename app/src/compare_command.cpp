@@ -70,22 +70,6 @@ const ReportRow* best_reference(const std::vector<ReportRow>& rows, double p99) 
   return best;
 }
 
-// Mean and sample standard deviation.
-struct Spread {
-  double mean = 0.0, sd = 0.0;
-};
-
-Spread spread_of(const std::vector<double>& values) {
-  Spread s;
-  if (values.empty()) return s;
-  for (const double v : values) s.mean += v / double(values.size());
-  if (values.size() < 2) return s;
-  double sum = 0.0;
-  for (const double v : values) sum += (v - s.mean) * (v - s.mean);
-  s.sd = std::sqrt(sum / double(values.size() - 1));
-  return s;
-}
-
 // The frames of `run` at every other row and column: the nodes a lattice of
 // (J + 1) / 2 x (K + 1) / 2 over the same flag has.
 analysis::Frames every_other_node(const RunRecord& run) {

@@ -55,6 +55,17 @@ std::vector<double> fly_end_signal(const RunRecord& run, PinSet pin) {
 
 }  // namespace
 
+Spread spread_of(const std::vector<double>& values) {
+  Spread s;
+  if (values.empty()) return s;
+  for (const double v : values) s.mean += v / double(values.size());
+  if (values.size() < 2) return s;
+  double sum = 0.0;
+  for (const double v : values) sum += (v - s.mean) * (v - s.mean);
+  s.sd = std::sqrt(sum / double(values.size() - 1));
+  return s;
+}
+
 double flap_hz_of(const Scene& scene, const RunRecord& run) {
   return analysis::flap_frequency_hz(fly_end_signal(run, scene.flag.pin), scene.fps);
 }

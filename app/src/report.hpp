@@ -43,6 +43,13 @@ struct MetricWindow {
 ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& reference,
                    const RunRecord* tracking, const MetricWindow& window);
 
+/// Mean and sample standard deviation of seed-to-seed values (compare and sweep --seeds).
+struct Spread {
+  double mean = 0.0, sd = 0.0;
+};
+/// The spread of `values`: 0 / 0 when empty, sd 0 with fewer than two.
+Spread spread_of(const std::vector<double>& values);
+
 /// The flap frequency of `run` (of `scene`), Hz: zero crossings of the fly
 /// end's out-of-plane position over the second half (0 when it does not flap).
 double flap_hz_of(const Scene& scene, const RunRecord& run);

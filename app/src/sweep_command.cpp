@@ -76,13 +76,6 @@ std::string reference_file_of(const std::string& file, int seed) {
 std::string seed_summary(const std::vector<ReportRow>& rows) {
   std::map<int, std::vector<const ReportRow*>> by_point;
   for (const ReportRow& row : rows) by_point[row.point].push_back(&row);
-  const auto stats = [](const std::vector<double>& values) {
-    double mean = 0.0, square = 0.0;
-    for (double v : values) mean += v / double(values.size());
-    for (double v : values) square += (v - mean) * (v - mean);
-    const double sd = values.size() > 1 ? std::sqrt(square / double(values.size() - 1)) : 0.0;
-    return std::pair{mean, sd};
-  };
   std::string out =
       "over the seeds, mean +- seed-to-seed sd (errors against the reference of the same seed):\n";
   for (const auto& [point, seeds] : by_point) {
@@ -96,8 +89,8 @@ std::string seed_summary(const std::vector<ReportRow>& rows) {
     }
     const auto field = [&](const std::vector<double>& v, const char* unit) {
       if (v.empty()) return std::string("-");
-      const auto [mean, sd] = stats(v);
-      return fmt::format("{:.2f} +- {:.2f}{}", mean, sd, unit);
+      const Spread s = spread_of(v);
+      return fmt::format("{:.2f} +- {:.2f}{}", s.mean, s.sd, unit);
     };
     out += fmt::format("  {:<38} {} seed(s): flap {}, |flap error| {}, mean shape {}\n",
                        seeds.front()->label, seeds.size(), field(flap, " Hz"), field(error, "%"),

@@ -71,6 +71,7 @@ class Simulation(_Simulation):
     """A scene compiled and running; see the module's help."""
 
     def __init__(self, scene=None, overrides=None):
+        from_file = False
         if scene is None:
             text, source = None, ""
         elif isinstance(scene, dict):
@@ -80,11 +81,11 @@ class Simulation(_Simulation):
             if "\n" not in path and (path.endswith(".toml") or os.path.isfile(path)):
                 with open(path, encoding="utf-8") as f:
                     text = f.read()
-                source = path
+                source, from_file = path, True
             else:
                 text, source = path, "<scene text>"
         else:
             raise SceneError(f"{type(scene).__name__}: a scene is a path, a TOML string, a dict "
                              "or None")
         sets = [f"{key}={_toml_value(value)}" for key, value in (overrides or {}).items()]
-        super().__init__(text, source, sets)
+        super().__init__(text, source, sets, from_file)

@@ -52,10 +52,12 @@ class PySimulation {
   /// @param toml_text  the scene (the embedded default when None)
   /// @param source     the name messages give it (the file's path, or "<scene text>")
   /// @param overrides  "KEY=VALUE" strings, as --set
+  /// @param from_file  `source` is the file the text was read from (an input of run())
   PySimulation(std::optional<std::string> toml_text, std::string source,
-               std::vector<std::string> overrides)
+               std::vector<std::string> overrides, bool from_file)
       : text_(toml_text ? *toml_text : std::string(default_scene_toml())),
         source_(toml_text ? std::move(source) : std::string(kDefaultSceneName)),
+        from_file_(toml_text && from_file),
         overrides_(std::move(overrides)),
         scene_(parse_scene(text_, source_, overrides_)),
         simulation_(hybrid::make_simulation(scene_)) {}
@@ -85,7 +87,7 @@ class PySimulation {
   int run(const std::string& path, bool quiet) const {
     app::RunOptions options;
     options.scene_text = text_;
-    if (source_ != kDefaultSceneName && source_ != "<scene text>") options.scene_path = source_;
+    if (from_file_) options.scene_path = source_;  // never written over, and named in messages
     options.sets = overrides_;
     options.output_path = path;
     options.quiet = quiet;
@@ -102,6 +104,7 @@ class PySimulation {
   }
 
   std::string text_, source_;
+  bool from_file_;
   std::vector<std::string> overrides_;
   Scene scene_;
   std::unique_ptr<hybrid::Simulation> simulation_;
@@ -163,8 +166,9 @@ PYBIND11_MODULE(_flagsim, m) {
   py::register_exception<flagsim::UserError>(m, "SceneError", PyExc_ValueError);
   py::register_exception<flagsim::IoError>(m, "WriteError", PyExc_OSError);
   py::class_<PySimulation>(m, "Simulation")
-      .def(py::init<std::optional<std::string>, std::string, std::vector<std::string>>(),
-           py::arg("toml_text"), py::arg("source"), py::arg("overrides"))
+      .def(py::init<std::optional<std::string>, std::string, std::vector<std::string>, bool>(),
+           py::arg("toml_text"), py::arg("source"), py::arg("overrides"),
+           py::arg("from_file") = false)
       .def("step", &PySimulation::step, py::arg("frames") = 1)
       .def_property_readonly("time", &PySimulation::time)
       .def_property_readonly("frame", &PySimulation::frame)

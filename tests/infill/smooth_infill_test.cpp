@@ -22,7 +22,22 @@ struct FlagCells {
             move(fine.rest_position(jc * grid.row_stride, kc * grid.col_stride));
     return coarse;
   }
+  /// The pole: every node of column 0.
+  std::vector<std::uint8_t> pole() const {
+    std::vector<std::uint8_t> held(fine.node_count(), 0);
+    for (int j = 0; j < fine.rows; ++j) held[fine.index(j, 0)] = 1;
+    return held;
+  }
 };
+
+// The rest plane rolled onto a cylinder of `radius` about the y axis, its
+// rows pushed together to `squash` of their length.
+auto rolled_onto(double radius, double squash) {
+  return [=](const Vec3& p) {
+    const double a = squash * p.x() / radius;
+    return Vec3(radius * std::sin(a), p.y(), radius * (1 - std::cos(a)));
+  };
+}
 
 TEST(SmoothInfill, ARigidMotionOfTheCoarseNodesMovesTheClothRigidly) {
   const FlagCells s;
@@ -45,13 +60,9 @@ TEST(SmoothInfill, KeepsFibersWithinTheBandOnABentCompressedCloth) {
   // coarse links are short, the dense fibers must keep their length.
   const FlagCells s;
   SmoothInfill infill(s.fine, s.grid);
-  std::vector<std::uint8_t> pole(s.fine.node_count(), 0);
-  for (int j = 0; j < s.fine.rows; ++j) pole[s.fine.index(j, 0)] = 1;
+  const std::vector<std::uint8_t> pole = s.pole();
   infill.hold(pole);
-  const auto rolled = [](const Vec3& p) {
-    const double a = 0.97 * p.x() / 0.6;
-    return Vec3(0.6 * std::sin(a), p.y(), 0.6 * (1 - std::cos(a)));
-  };
+  const auto rolled = rolled_onto(0.6, 0.97);
   std::vector<Vec3> dense = s.fine.rest_positions();
   const std::vector<Vec3> coarse = s.coarse_of(rolled);
   infill.fill(coarse, dense, nullptr);
@@ -77,16 +88,10 @@ TEST(SmoothInfill, AMildlyCompressedClothKeepsItsFiberLengthsAsRelief) {
   // length the surface lacks goes into relief off the cylinder.
   const FlagCells s;
   SmoothInfill infill(s.fine, s.grid);
-  std::vector<std::uint8_t> pole(s.fine.node_count(), 0);
-  for (int j = 0; j < s.fine.rows; ++j) pole[s.fine.index(j, 0)] = 1;
-  infill.hold(pole);
-  constexpr double kRadius = 0.6, kSquash = 0.997;
-  const auto rolled = [&](const Vec3& p) {
-    const double a = kSquash * p.x() / kRadius;
-    return Vec3(kRadius * std::sin(a), p.y(), kRadius * (1 - std::cos(a)));
-  };
+  infill.hold(s.pole());
+  constexpr double kRadius = 0.6;
   std::vector<Vec3> dense = s.fine.rest_positions();
-  infill.fill(s.coarse_of(rolled), dense, nullptr);
+  infill.fill(s.coarse_of(rolled_onto(kRadius, 0.997)), dense, nullptr);
   ASSERT_TRUE(infill.last_report().converged);
   // Issue 34's 0.1% (kBand + kProjectionTolerance); the fibers sat at -0.3% before.
   EXPECT_LE(link_strain(s.fine, dense).max, 0.001);

@@ -87,6 +87,21 @@ class Simulation(unittest.TestCase):
                 flagsim.Simulation(scene).run(scene)
             with open(scene) as f:
                 self.assertTrue(f.read().startswith("[scene]"))  # untouched
+            # A scene from a dict or a string has no file: nothing named like its
+            # message label ("<scene dict>") is taken for its input.
+            label = "<scene dict>"
+            here = os.getcwd()
+            os.chdir(tmp)
+            try:
+                with open(label, "w") as f:
+                    f.write("not a scene")
+                as_dict = {"scene": {"duration": 0.1, "mode": "hybrid"},
+                           "flag": {"fine": [17, 25], "coarse": [5, 7]}}
+                self.assertEqual(flagsim.Simulation(as_dict).run(label), 0)
+                with h5py.File(label, "r") as f:
+                    self.assertEqual(f["/frames/positions"].shape[1:3], (17, 25))
+            finally:
+                os.chdir(here)
 
     def test_bad_scenes_raise_the_command_lines_messages(self):
         with self.assertRaisesRegex(ValueError, r"flag.coarse: \[9, 13\] does not divide"):
