@@ -138,15 +138,21 @@ BulletCloth::BulletCloth(const Scene& scene)
   world.setInternalTickCallback(&pre_tick, this, /*isPreTick=*/true);
 
   // The start: rest plus the scene's seeded perturbation (free nodes only).
-  state_ = initial_state(scene, model_);
-  for (std::size_t i = 0; i < n; ++i) {
+  set_state(initial_state(scene, model_));
+}
+
+BulletCloth::~BulletCloth() = default;
+
+void BulletCloth::set_state(const ClothState& state) {
+  state_ = state;
+  btSoftBody& body = *world_->body;
+  for (std::size_t i = 0; i < rest_m_.size(); ++i) {
     btSoftBody::Node& node = body.m_nodes[int(i)];
     node.m_x = node.m_q = to_bt(state_.x_m[i]);
     node.m_v = to_bt(state_.v_m_s[i]);
   }
+  world_->time_s = state_.time_s;
 }
-
-BulletCloth::~BulletCloth() = default;
 
 void BulletCloth::register_stages(StageTimes& times) {
   term_stage_ = register_term_stages(terms_, times);

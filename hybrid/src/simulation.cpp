@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <string_view>
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/core/divergence.hpp"
+#include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/keyframes.hpp"
@@ -40,6 +42,21 @@ std::string stepping_of(const physics::ClothIntegrator& physics) {
   return text;
 }
 
+// UserError unless `part` of a state given to set_state has `expected` entries.
+void check_state_size(std::string_view part, std::size_t size, std::size_t expected) {
+  if (size != expected)
+    throw UserError(fmt::format("set_state: {}: {} entries where this simulation has {}", part,
+                                size, expected));
+}
+
+// Checks and sets the physics part of a state.
+void set_physics_state(physics::ClothIntegrator& physics, const physics::ClothState& state) {
+  const std::size_t n = physics.state().x_m.size();
+  check_state_size("the physics positions", state.x_m.size(), n);
+  check_state_size("the physics velocities", state.v_m_s.size(), n);
+  physics.set_state(state);
+}
+
 // The full-lattice modes (is_full_lattice): physics on every node.
 class FullLatticeSimulation final : public Simulation {
  public:
@@ -48,16 +65,25 @@ class FullLatticeSimulation final : public Simulation {
   std::vector<std::string> effects() const override { return physics_->effects(); }
   std::vector<NamedNumber> numbers() const override { return stepping_numbers(*physics_); }
   void register_stages(StageTimes& times) override { physics_->register_stages(times); }
-  void advance_frame(StageTimes* times) override { physics_->advance_frame(times); }
+  void advance_frame(StageTimes* times) override {
+    physics_->advance_frame(times);
+    ++frame_;
+  }
   std::span<const Vec3> positions() const override { return physics_->state().x_m; }
   std::span<const Vec3> velocities() const override { return physics_->state().v_m_s; }
   double kinetic_energy_j() const override { return physics_->kinetic_energy(); }
   std::string stepping_summary() const override { return stepping_of(*physics_); }
   std::optional<std::string> physics_failure() const override { return physics_->failure(); }
   std::string physics_advice() const override { return physics_->divergence_advice(); }
+  SimulationState state() const override { return {frame_, physics_->state(), {}, {}, {}}; }
+  void set_state(const SimulationState& state) override {
+    set_physics_state(*physics_, state.physics);
+    frame_ = state.frame;
+  }
 
  private:
   std::unique_ptr<physics::ClothIntegrator> physics_;
+  int frame_ = 0;
 };
 
 // Step 3.5's constants from [wrinkles], or nullopt when the scene has none.
@@ -121,6 +147,20 @@ class DenseInfill {
       velocities_[i] = (positions_[i] - previous_[i]) * fps_;
   }
   void forget_velocities() { std::fill(velocities_.begin(), velocities_.end(), Vec3::Zero()); }
+  /// The dense part of a SimulationState.
+  void save(SimulationState& state) const {
+    state.dense_m = positions_;
+    state.dense_v_m_s = velocities_;
+    state.infill_memory = solver_->memory();
+  }
+  void restore(const SimulationState& state) {
+    check_state_size("the dense positions", state.dense_m.size(), positions_.size());
+    check_state_size("the dense velocities", state.dense_v_m_s.size(), velocities_.size());
+    check_state_size("the infill's memory", state.infill_memory.size(), solver_->memory().size());
+    positions_ = state.dense_m;
+    velocities_ = state.dense_v_m_s;
+    solver_->set_memory(state.infill_memory);
+  }
   std::span<const Vec3> positions() const { return positions_; }
   std::span<const Vec3> velocities() const { return velocities_; }
   /// 1/2 sum m |v|^2 over the dense nodes, J.
@@ -171,6 +211,17 @@ class InfillSimulation final : public Simulation {
     return fmt::format("{} relaxation sweeps in the last frame",
                        dense_.solver().last_report().iterations);
   }
+  SimulationState state() const override {
+    SimulationState state;
+    state.frame = frame_;
+    dense_.save(state);
+    return state;
+  }
+  void set_state(const SimulationState& state) override {
+    check_state_size("the physics positions", state.physics.x_m.size(), 0);
+    dense_.restore(state);
+    frame_ = state.frame;
+  }
 
  private:
   void fill(double time_s, StageTimes* times) {
@@ -213,6 +264,7 @@ class HybridSimulation final : public Simulation {
     physics_->advance_frame(times);
     run_timed(times, slack_stage_, [&] { make_reachable(); });
     dense_.fill(reachable_, times);
+    ++frame_;
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
@@ -234,6 +286,17 @@ class HybridSimulation final : public Simulation {
   }
   std::optional<std::string> physics_failure() const override { return physics_->failure(); }
   std::string physics_advice() const override { return physics_->divergence_advice(); }
+  SimulationState state() const override {
+    SimulationState state{frame_, physics_->state(), {}, {}, {}};
+    dense_.save(state);
+    return state;
+  }
+  void set_state(const SimulationState& state) override {
+    set_physics_state(*physics_, state.physics);
+    dense_.restore(state);
+    make_reachable();  // the nodes the last fill used: a function of the physics state
+    frame_ = state.frame;
+  }
 
  private:
   // The coarse nodes handed to the infill are pulled in (infill::limit_stretch)
@@ -266,6 +329,7 @@ class HybridSimulation final : public Simulation {
   int slack_stage_ = -1;
   DenseInfill dense_;
   bool paper_infill_;
+  int frame_ = 0;
 };
 
 }  // namespace

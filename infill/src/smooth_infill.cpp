@@ -283,6 +283,22 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
   }
 }
 
+std::vector<double> SmoothInfill::memory() const {
+  // This level's offsets, then every coarser level's (each has 3.5 too).
+  std::vector<double> memory = last_offset_;
+  if (coarser_) {
+    const std::vector<double> coarser = coarser_->memory();
+    memory.insert(memory.end(), coarser.begin(), coarser.end());
+  }
+  return memory;
+}
+
+void SmoothInfill::set_memory(std::span<const double> memory) {
+  assert(memory.size() == this->memory().size());
+  std::copy_n(memory.begin(), last_offset_.size(), last_offset_.begin());
+  if (coarser_) coarser_->set_memory(memory.subspan(last_offset_.size()));
+}
+
 void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
                         StageTimes* times) {
   assert(coarse_m.size() == grid_.coarse_count() && positions_m.size() == lattice_.node_count());

@@ -15,7 +15,9 @@ Names (README "Python"):
   infill(coarse, fine=(J, K), size=(width, height), pin="left", solver="smooth") -> [J, K, 3].
   SceneError (a ValueError): a bad scene, override or argument, with the command line's message.
   WriteError (an OSError): an output that cannot be written. A diverged frame is RuntimeError.
-Not yet: Simulation.state() / set_state() (saving and restoring a state; issue 30).
+  .state() -> dict of copies (frame, time, positions, velocities; coarse_positions and
+      coarse_velocities in the hybrid; infill_memory with [wrinkles]; format), .set_state(state):
+      go on from it, here or in a new Simulation of the same scene, bit for bit.
 """
 import math
 import os

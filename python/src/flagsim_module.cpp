@@ -13,6 +13,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <span>
@@ -78,6 +80,11 @@ class PySimulation {
   double time() const { return frame_ / scene_.fps; }
   int frame() const { return frame_; }
   const Scene& scene() const { return scene_; }
+  /// A copy of the whole state: continuing from it after set_state gives the same bytes.
+  py::dict state() const;
+  /// Continues from a state() of a simulation of the same scene (also one taken before a
+  /// divergence: the divergence is forgotten).
+  void set_state(const py::dict& state);
   const hybrid::Simulation& simulation() const { return *simulation_; }
   std::pair<int, int> coarse_shape() const {
     const auto [rows, cols] = simulation_->coarse_indices();
@@ -111,6 +118,101 @@ class PySimulation {
   int frame_ = 0;
   std::optional<std::string> diverged_;
 };
+
+// Names of a state's arrays: [rows, cols, 3] copies of the simulation's buffers.
+constexpr const char* kStateFormat = "flagsim.state/1";
+
+py::array_t<double> node_copy(std::span<const Vec3> values, int rows, int cols) {
+  py::array_t<double> array({py::ssize_t(rows), py::ssize_t(cols), py::ssize_t(3)});
+  std::copy_n(values.empty() ? nullptr : values.front().data(), values.size() * 3,
+              array.mutable_data());
+  return array;
+}
+
+// The entry `key` of a state dict as [n] nodes, checked against the shape [rows, cols, 3].
+std::vector<Vec3> nodes_of(const py::dict& state, const char* key, int rows, int cols) {
+  if (!state.contains(key))
+    throw UserError(std::string("set_state: the state has no '") + key + "'");
+  const auto array =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(state[key]);
+  if (!array || array.ndim() != 3 || array.shape(0) != rows || array.shape(1) != cols ||
+      array.shape(2) != 3)
+    throw UserError(std::string("set_state: '") + key + "' must be an array of shape [" +
+                    std::to_string(rows) + ", " + std::to_string(cols) + ", 3]");
+  std::vector<Vec3> nodes(std::size_t(rows) * std::size_t(cols));
+  std::copy_n(array.data(), nodes.size() * 3, nodes.front().data());
+  for (const Vec3& x : nodes)
+    if (!x.allFinite())
+      throw UserError(std::string("set_state: '") + key + "' holds a value that is not finite");
+  return nodes;
+}
+
+py::dict PySimulation::state() const {
+  const hybrid::SimulationState s = simulation_->state();
+  const Lattice& dense = simulation_->lattice();
+  const auto [coarse_rows, coarse_cols] = coarse_shape();
+  py::dict out;
+  out["format"] = kStateFormat;
+  out["frame"] = s.frame;
+  out["time"] = s.physics.x_m.empty() ? frame_ / scene_.fps : s.physics.time_s;
+  const bool hybrid = coarse_rows > 0;
+  if (s.dense_m.empty()) {  // a full lattice: the physics' state is the dense one
+    out["positions"] = node_copy(s.physics.x_m, dense.rows, dense.cols);
+    out["velocities"] = node_copy(s.physics.v_m_s, dense.rows, dense.cols);
+  } else {
+    out["positions"] = node_copy(s.dense_m, dense.rows, dense.cols);
+    out["velocities"] = node_copy(s.dense_v_m_s, dense.rows, dense.cols);
+  }
+  if (hybrid) {  // the coarse lattice's physics (before any slack the infill's nodes take)
+    out["coarse_positions"] = node_copy(s.physics.x_m, coarse_rows, coarse_cols);
+    out["coarse_velocities"] = node_copy(s.physics.v_m_s, coarse_rows, coarse_cols);
+  }
+  if (!s.infill_memory.empty())
+    out["infill_memory"] =
+        py::array_t<double>(py::ssize_t(s.infill_memory.size()), s.infill_memory.data());
+  return out;
+}
+
+void PySimulation::set_state(const py::dict& state) {
+  if (!state.contains("format") || py::str(state["format"]).cast<std::string>() != kStateFormat)
+    throw UserError(std::string("set_state: expected a dict from state() (format '") +
+                    kStateFormat + "')");
+  if (!state.contains("frame") || !state.contains("time"))
+    throw UserError("set_state: the state has no 'frame' or 'time'");
+  const int frame = state["frame"].cast<int>();
+  const double time = state["time"].cast<double>();
+  if (frame < 0 || !std::isfinite(time))
+    throw UserError("set_state: 'frame' must be 0 or more and 'time' finite");
+  const Lattice& dense = simulation_->lattice();
+  const auto [coarse_rows, coarse_cols] = coarse_shape();
+  const hybrid::SimulationState now = simulation_->state();
+  hybrid::SimulationState s;
+  s.frame = frame;
+  std::vector<Vec3> x = nodes_of(state, "positions", dense.rows, dense.cols);
+  std::vector<Vec3> v = nodes_of(state, "velocities", dense.rows, dense.cols);
+  if (now.dense_m.empty()) {
+    s.physics = {std::move(x), std::move(v), time};
+  } else {
+    s.dense_m = std::move(x);
+    s.dense_v_m_s = std::move(v);
+    if (coarse_rows > 0)
+      s.physics = {nodes_of(state, "coarse_positions", coarse_rows, coarse_cols),
+                   nodes_of(state, "coarse_velocities", coarse_rows, coarse_cols), time};
+  }
+  if (!now.infill_memory.empty()) {
+    if (!state.contains("infill_memory"))
+      throw UserError("set_state: the state has no 'infill_memory' (this scene has wrinkles)");
+    const auto memory = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
+        state["infill_memory"]);
+    if (!memory || memory.ndim() != 1 || std::size_t(memory.size()) != now.infill_memory.size())
+      throw UserError("set_state: 'infill_memory' must be an array of shape [" +
+                      std::to_string(now.infill_memory.size()) + "]");
+    s.infill_memory.assign(memory.data(), memory.data() + memory.size());
+  }
+  simulation_->set_state(s);
+  frame_ = frame;
+  diverged_.reset();
+}
 
 // The hybrid's infill alone: dense positions [J, K, 3] from coarse ones [Jc, Kc, 3].
 py::array_t<double> infill(
@@ -202,6 +304,8 @@ PYBIND11_MODULE(_flagsim, m) {
                                return flagsim::python::node_view(s.simulation().coarse_positions(),
                                                                  rows, cols, self);
                              })
+      .def("state", &PySimulation::state)
+      .def("set_state", &PySimulation::set_state, py::arg("state"))
       .def("run", &PySimulation::run, py::arg("path"), py::arg("quiet") = true);
   m.def("infill", &flagsim::python::infill, py::arg("coarse"), py::arg("fine"),
         py::arg("size") = std::pair<double, double>(1.5, 1.0), py::arg("pin") = "left",

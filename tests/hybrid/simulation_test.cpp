@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/core/errors.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
 #include "tolerances.hpp"
@@ -141,6 +142,38 @@ TEST(HybridSimulation, NotesWrinklesFinerThanTheLatticeCarriesAndOnlyThose) {
   EXPECT_FALSE(wrinkle_resolution_note(
                    default_at_33x49({"wrinkles.fiber_modulus=1e9", "wrinkles.fiber_radius=0.002"}))
                    .has_value());
+}
+
+TEST(SimulationState, AStateTakenGoesOnAsTheSimulationItWasTakenFrom) {
+  // The library's state()/set_state() (the Python module's, every mode there):
+  // a second simulation of the scene, set to frame 3 of the first, steps on
+  // bit for bit; a state of another lattice is refused, naming the part.
+  const Scene scene = default_at_33x49();
+  const auto first = make_simulation(scene);
+  for (int f = 0; f < 3; ++f) first->advance_frame(nullptr);
+  const SimulationState at3 = first->state();
+  EXPECT_EQ(at3.frame, 3);
+  EXPECT_EQ(at3.physics.x_m.size(), 9u * 13u);
+  EXPECT_EQ(at3.dense_m.size(), 33u * 49u);
+  first->advance_frame(nullptr);
+  const auto second = make_simulation(scene);
+  second->set_state(at3);
+  second->advance_frame(nullptr);
+  EXPECT_EQ(second->state().frame, 4);
+  EXPECT_TRUE(std::equal(first->positions().begin(), first->positions().end(),
+                         second->positions().begin()));
+  EXPECT_TRUE(std::equal(first->coarse_positions().begin(), first->coarse_positions().end(),
+                         second->coarse_positions().begin()));
+
+  SimulationState wrong = at3;
+  wrong.dense_m.pop_back();
+  try {
+    second->set_state(wrong);
+    ADD_FAILURE() << "a dense lattice one node short was taken";
+  } catch (const UserError& e) {
+    EXPECT_STREQ(e.what(),
+                 "set_state: the dense positions: 1616 entries where this simulation has 1617");
+  }
 }
 
 }  // namespace

@@ -16,6 +16,7 @@ import flagsim
 
 FLAG_SIM = None
 SMALL = {"flag.fine": [33, 49]}  # the default scene (hybrid, 9 x 13 coarse) on a small lattice
+SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scenes")
 
 
 def cli_frames(*args, frames=4):
@@ -124,6 +125,98 @@ class Simulation(unittest.TestCase):
             sim.step(60)
         with self.assertRaisesRegex(RuntimeError, "diverged earlier"):
             sim.step()
+
+
+class State(unittest.TestCase):
+    """state() / set_state(): going on from a restored state is going on from where it was taken."""
+
+    CASES = {
+        "hybrid": (None, SMALL),
+        "hybrid, wrinkles": (os.path.join(SCENES, "hard", "hybrid_storm_wrinkles.toml"),
+                             {"flag.fine": [17, 25], "flag.coarse": [5, 7]}),
+        "hybrid, paper infill": (None, {**SMALL, "infill.solver": "paper"}),
+        "hybrid, bullet": (None, {**SMALL, "solver.backend": "bullet"}),
+        "mass-spring": (None, {"scene.mode": "mass-spring", "flag.fine": [17, 25]}),
+        "implicit": (None, {"scene.mode": "implicit", "flag.fine": [17, 25]}),
+        "xpbd": (None, {"scene.mode": "xpbd", "flag.fine": [17, 25]}),
+        "infill": (os.path.join(SCENES, "infill", "twisted.toml"), {"flag.fine": [17, 25]}),
+    }
+
+    def test_a_restored_state_goes_on_bit_for_bit_in_every_mode(self):
+        for name, (scene, overrides) in self.CASES.items():
+            with self.subTest(name):
+                sim = flagsim.Simulation(scene, overrides=overrides)
+                sim.step(3)
+                saved = sim.state()
+                sim.step(3)
+                after = (sim.positions.copy(), sim.velocities.copy(), sim.time, sim.frame)
+                self.assertGreater(np.abs(after[0] - saved["positions"]).max(), 1e-5)
+                # The state is a copy: stepping on did not change it.
+                self.assertEqual(saved["frame"], 3)
+                for target in (sim, flagsim.Simulation(scene, overrides=overrides)):
+                    target.set_state(saved)
+                    self.assertEqual(target.frame, 3)
+                    np.testing.assert_array_equal(target.positions, saved["positions"])
+                    target.step(3)
+                    np.testing.assert_array_equal(target.positions, after[0])
+                    np.testing.assert_array_equal(target.velocities, after[1])
+                    self.assertEqual((target.time, target.frame), after[2:])
+
+    def test_the_infill_memory_is_restored(self):
+        # 3.5 keeps each wave on the side it was (property 2): the memory decides the sides.
+        scene, overrides = self.CASES["hybrid, wrinkles"]
+        sim = flagsim.Simulation(scene, overrides=overrides)
+        sim.step(3)
+        saved = sim.state()
+        sim.step()
+        kept = sim.positions.copy()
+        sim.set_state({**saved, "infill_memory": -saved["infill_memory"]})
+        sim.step()
+        self.assertGreater(np.abs(sim.positions - kept).max(), 1e-4)
+
+    def test_the_state_names_its_parts(self):
+        sim = flagsim.Simulation(None, overrides=SMALL)
+        sim.step()
+        state = sim.state()
+        self.assertEqual(state["format"], "flagsim.state/1")
+        self.assertEqual(state["positions"].shape, (33, 49, 3))
+        self.assertEqual(state["coarse_velocities"].shape, (9, 13, 3))
+        np.testing.assert_array_equal(state["coarse_positions"], sim.coarse_positions)
+        self.assertAlmostEqual(state["time"], 1 / 30.0, places=12)
+        full = flagsim.Simulation(None, overrides={"scene.mode": "mass-spring",
+                                                   "flag.fine": [17, 25]})
+        self.assertNotIn("coarse_positions", full.state())
+
+    def test_a_state_brings_a_diverged_simulation_back(self):
+        sim = flagsim.Simulation(None, overrides={**SMALL, "flag.stretch_modulus": 1.0,
+                                                  "limits.max_strain": 0.05})
+        start = sim.state()
+        with self.assertRaises(RuntimeError):
+            sim.step(60)
+        sim.set_state(start)
+        sim.step()  # no "diverged earlier"
+        self.assertEqual(sim.frame, 1)
+
+    def test_a_state_that_does_not_fit_is_refused_and_changes_nothing(self):
+        sim = flagsim.Simulation(None, overrides=SMALL)
+        sim.step(2)
+        good = sim.state()
+        before = sim.positions.copy()
+        other = flagsim.Simulation(None, overrides={"flag.fine": [17, 25]}).state()
+        cases = [
+            (other, r"'positions' must be an array of shape \[33, 49, 3\]"),
+            ({k: v for k, v in good.items() if k != "coarse_velocities"},
+             "no 'coarse_velocities'"),
+            ({**good, "positions": good["positions"] * np.nan}, "not finite"),
+            ({**good, "format": "something else"}, "expected a dict from state"),
+            ({**good, "frame": -1}, "'frame' must be 0 or more"),
+        ]
+        for bad, message in cases:
+            with self.subTest(message):
+                with self.assertRaisesRegex(ValueError, message):
+                    sim.set_state(bad)
+                np.testing.assert_array_equal(sim.positions, before)
+                self.assertEqual(sim.frame, 2)
 
 
 class Infill(unittest.TestCase):

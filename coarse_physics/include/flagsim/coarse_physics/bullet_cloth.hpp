@@ -57,6 +57,9 @@ class BulletCloth final : public ClothIntegrator {
   const ClothModel& model() const override { return model_; }
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
+  /// Bullet's nodes are put where `state` says (positions, the previous
+  /// positions and velocities), and its clock to the state's time.
+  void set_state(const ClothState& state) override;
   double stable_substep_s() const override { return stable_substep_s_; }
   int substeps_per_frame() const override { return substeps_per_frame_; }
   double substep_s() const override { return frame_s_ / substeps_per_frame_; }

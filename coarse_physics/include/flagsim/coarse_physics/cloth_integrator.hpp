@@ -25,6 +25,10 @@ class ClothIntegrator {
   virtual const std::vector<std::string>& effects() const = 0;
   /// Positions [J*K] m, velocities [J*K] m/s and time after the last frame.
   virtual const ClothState& state() const = 0;
+  /// Continues from `state` (one that state() gave for this cloth: [J*K]
+  /// positions and velocities, and its time); stepping on from it gives the
+  /// same bytes as stepping on from where it was taken.
+  virtual void set_state(const ClothState& state) = 0;
   /// Largest substep the backend treats as faithful (stability or stiffness limit), s.
   virtual double stable_substep_s() const = 0;
   virtual int substeps_per_frame() const = 0;
@@ -59,6 +63,7 @@ class SpringDamperIntegrator final : public ClothIntegrator {
   const ClothModel& model() const override { return solver_.model(); }
   const std::vector<std::string>& effects() const override { return solver_.effects(); }
   const ClothState& state() const override { return state_; }
+  void set_state(const ClothState& state) override { state_ = state; }
   double stable_substep_s() const override { return solver_.stable_substep_s(); }
   int substeps_per_frame() const override { return solver_.substeps_per_frame(); }
   double substep_s() const override { return solver_.substep_s(); }

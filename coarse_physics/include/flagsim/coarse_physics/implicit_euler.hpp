@@ -68,6 +68,7 @@ class ImplicitEuler final : public ClothIntegrator {
   const ClothModel& model() const override { return model_; }
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
+  void set_state(const ClothState& state) override { state_ = state; }
   /// The explicit integrator's limit for the same cloth, s (for comparison:
   /// this stepper does not need it).
   double stable_substep_s() const override { return explicit_limit_s_; }

@@ -68,6 +68,7 @@ class Xpbd final : public ClothIntegrator {
   const ClothModel& model() const override { return model_; }
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
+  void set_state(const ClothState& state) override { state_ = state; }
   /// The explicit terms' limit (the wind's), s; infinity if none bounds it.
   double stable_substep_s() const override { return stable_substep_s_; }
   int substeps_per_frame() const override { return substeps_; }

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/named_number.hpp"
 #include "flagsim/core/scene.hpp"
@@ -16,6 +17,20 @@
 #include "flagsim/infill/infill_method.hpp"
 
 namespace flagsim::hybrid {
+
+/// Everything a simulation continues from (Simulation::state): stepping on
+/// from a restored state gives the same bytes as stepping on from where it was
+/// taken. Shapes are the simulation's; set_state checks them.
+struct SimulationState {
+  int frame = 0;  ///< output frames since t = 0
+  /// The integrated lattice's positions [n] m, velocities [n] m/s and time s:
+  /// the full lattice's, or the coarse one's in the hybrid; empty in mode "infill".
+  physics::ClothState physics;
+  /// The dense lattice [J*K] the infill fills from (hybrid, infill), m and
+  /// m/s (its frame-to-frame velocities); empty in the full-lattice modes.
+  std::vector<Vec3> dense_m, dense_v_m_s;
+  std::vector<double> infill_memory;  ///< infill::InfillMethod::memory()
+};
 
 class Simulation {
  public:
@@ -46,6 +61,12 @@ class Simulation {
   virtual std::string physics_advice() const { return {}; }
   /// What the summary line says about the stepping ("1001 substeps/frame of 3.3e-05 s").
   virtual std::string stepping_summary() const = 0;
+  /// A copy of the whole state after the last frame.
+  virtual SimulationState state() const = 0;
+  /// Continues from `state`, one that state() of a simulation of the same
+  /// scene gave (any frame, also one before a divergence). Throws UserError,
+  /// naming the part, when a part's size is not this simulation's.
+  virtual void set_state(const SimulationState& state) = 0;
 };
 
 /// A `note:` line when the scene's [wrinkles] ask for waves finer than its

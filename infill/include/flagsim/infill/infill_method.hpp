@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/scene.hpp"
@@ -49,6 +50,11 @@ class InfillMethod {
                     StageTimes* times) = 0;
   virtual FillReport last_report() const = 0;
   virtual const CellGrid& grid() const = 0;
+  /// What a fill carries into the next besides the dense positions (the
+  /// smooth solver's 3.5 offsets along the normals [J*K], m, with wrinkles);
+  /// empty when nothing is. set_memory takes what memory() gave.
+  virtual std::vector<double> memory() const { return {}; }
+  virtual void set_memory(std::span<const double> /*memory*/) {}
 };
 
 std::unique_ptr<InfillMethod> make_infill(const Lattice& fine, const CellGrid& grid,

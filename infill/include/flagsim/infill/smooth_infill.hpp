@@ -132,6 +132,8 @@ class SmoothInfill final : public InfillMethod {
             StageTimes* times) override;
   FillReport last_report() const override { return report_; }
   const CellGrid& grid() const override { return grid_; }
+  std::vector<double> memory() const override;
+  void set_memory(std::span<const double> memory) override;
 
  private:
   /// 3.3: every link's band from the coarse links it lies between.
