@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "dense_input.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/staged_file.hpp"
@@ -101,7 +102,8 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
   const std::optional<std::pair<int, int>> range =
       options.frames ? std::optional(parse_frame_range(*options.frames)) : std::nullopt;
 
-  const data::OutputReader reader(h5_path);
+  const DenseInput dense(h5_path);  // a coarse trajectory's frames refined first
+  const data::OutputReader reader(dense.path());
   const int rows = reader.rows(), cols = reader.cols();
   const auto [first, last] =
       resolve_frame_range(range.value_or(std::pair{0, -1}), reader.frame_count(), h5_path);

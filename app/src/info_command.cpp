@@ -23,6 +23,8 @@ struct RunSummary {
   std::string file, status, reason, mode, effects, version;
   long long seed = 0;
   int rows = 0, cols = 0, frames = 0;
+  bool dense = true;          ///< false: output.dense = false, the coarse trajectory only
+  int trajectory_frames = 0;  ///< simulated frames in /coarse/trajectory
   double t_first_s = 0.0, t_last_s = 0.0;
   double substeps = 0.0, substep_s = 0.0, stable_substep_s = 0.0;
   bool has_strain = false;
@@ -54,6 +56,8 @@ RunSummary summarise(const std::string& path) {
   s.rows = reader.rows();
   s.cols = reader.cols();
   s.frames = reader.frame_count();
+  s.dense = reader.dense();
+  s.trajectory_frames = reader.trajectory_frames();
   const std::vector<double> times = reader.times_s();
   if (!times.empty()) {
     s.t_first_s = times.front();
@@ -120,6 +124,11 @@ std::string text_of(const RunSummary& s) {
   else
     fmt::format_to(out, "frames    {}, t = {:.4g} .. {:.4g} s\n", s.frames, s.t_first_s,
                    s.t_last_s);
+  if (!s.dense)
+    fmt::format_to(out,
+                   "stored    the coarse trajectory only (output.dense = false, {} simulated "
+                   "frames); `flag-sim refine {} -o DENSE.h5` recomputes the dense frames\n",
+                   s.trajectory_frames, s.file);
   fmt::format_to(out, "effects   {}\n", s.effects);
   fmt::format_to(out, "seed      {}\n", s.seed);
   fmt::format_to(out, "version   {}\n", s.version);
@@ -180,6 +189,7 @@ std::string json_of(const RunSummary& s) {
   field("lattice", fmt::format("{{\"rows\": {}, \"cols\": {}, \"nodes\": {}}}", s.rows, s.cols,
                                s.rows * s.cols));
   field("frames", fmt::format("{}", s.frames));
+  field("dense", s.dense ? "true" : "false");
   field("time_s", fmt::format("[{}, {}]", json_number(s.t_first_s), json_number(s.t_last_s)));
   field("effects", fmt::format("[{}]", fmt::join(effects, ", ")));
   field("seed", fmt::format("{}", s.seed));

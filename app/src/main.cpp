@@ -126,6 +126,16 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("--color", run.render_color, "Colour the rendered cloth by strain or speed");
   run_cmd->add_flag("-q,--quiet", run.quiet, "No progress line, only the summary");
 
+  flagsim::app::RunOptions refine;
+  CLI::App* refine_cmd = cli.add_subcommand(
+      "refine", "Recompute the dense frames of a run that kept its coarse trajectory only");
+  refine_cmd->add_option("input", refine.refine_input, "Output of a run with output.dense = false")
+      ->required();
+  refine_cmd->add_option("-o,--output", refine.output_path, "Output file (.h5)")->required();
+  refine_cmd->add_option("--set", refine.sets,
+                         "Override flag.fine, infill.*, wrinkles.*, limits.* or output.*");
+  refine_cmd->add_flag("-q,--quiet", refine.quiet, "No progress line, only the summary");
+
   std::string validate_path;
   std::vector<std::string> validate_sets;
   CLI::App* validate_cmd = cli.add_subcommand("validate", "Check a scene file without running it");
@@ -300,6 +310,7 @@ int run_main(int argc, char** argv) {
 
   try {
     if (*run_cmd) return flagsim::app::run_command(run);
+    if (*refine_cmd) return flagsim::app::run_command(refine);
     if (*validate_cmd) return flagsim::app::validate_command(validate_path, validate_sets);
     if (*info_cmd) return flagsim::app::info_command(info_path, info_json);
     if (*scene_cmd) return flagsim::app::scene_command(scene_path, print_default, scene_sets);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <regex>
 
+#include "dense_input.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/limits.hpp"
@@ -213,7 +214,8 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
 
 std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   using Clock = std::chrono::steady_clock;
-  const data::OutputReader reader(h5_path);
+  const DenseInput dense(h5_path);  // a coarse trajectory's frames refined first
+  const data::OutputReader reader(dense.path());
   const int frames = reader.frame_count(), rows = reader.rows(), cols = reader.cols();
   // Frame the whole run: every node of every frame, and the ground below it.
   render::Bounds bounds;

@@ -19,6 +19,7 @@
 #include "flagsim/core/strain.hpp"
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
+#include "flagsim/data/output_reader.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
@@ -67,17 +68,59 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// What refine may change (--set): the dense lattice, the infill and the output;
+// every other key is the physics the trajectory already holds.
+void check_refine_override(const Override& set) {
+  const std::string_view text = set.assignment;
+  const std::string_view key = text.substr(0, text.find('='));
+  const auto starts = [&](std::string_view prefix) {
+    return key.substr(0, prefix.size()) == prefix;
+  };
+  if (key == "flag.fine" || starts("infill.") || starts("wrinkles.") || starts("limits.") ||
+      (starts("output.") && key != "output.dense" && key != "output.file"))
+    return;
+  throw UserError(fmt::format(
+      "{}: refine recomputes the dense frames from the stored coarse trajectory and takes only "
+      "flag.fine, infill.*, wrinkles.*, limits.* and output.* (not dense, file); {} is the "
+      "physics: run the scene again",
+      set.typed, printable(std::string(key))));
+}
+
+// A coarse-trajectory file's state, as its status attribute says.
+RunStatus status_of(const data::OutputReader& source) {
+  const std::optional<RunState> state = value_in(kRunStateNames, source.attribute("status"));
+  return {state.value_or(RunState::kInterrupted), source.attribute("status_reason")};
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
   if (options.frames && *options.frames < 1)
     throw UserError(fmt::format("--frames {}: expected at least 1 frame", *options.frames));
+  const bool refining = !options.refine_input.empty();
+  std::optional<data::OutputReader> source;  // refine's input
+  if (refining) {
+    source.emplace(options.refine_input);
+    if (source->trajectory_frames() == 0)
+      throw UserError(fmt::format(
+          "{}: holds no coarse trajectory to refine (a hybrid run with output.dense = false "
+          "keeps one)",
+          options.refine_input));
+  }
+  std::vector<Override> overrides = overrides_of(options);
+  if (refining) {
+    for (const Override& set : overrides) check_refine_override(set);
+    overrides.push_back({"output.dense=true", "refine"});
+  }
   const Scene scene =
-      options.scene_text
+      refining ? parse_scene(source->attribute("scene"), options.refine_input, overrides)
+      : options.scene_text
           ? parse_scene(*options.scene_text,
-                        options.scene_path.empty() ? "<scene text>" : options.scene_path,
-                        overrides_of(options))
-          : load_scene(options.scene_path, overrides_of(options));
+                        options.scene_path.empty() ? "<scene text>" : options.scene_path, overrides)
+          : load_scene(options.scene_path, overrides);
+  if (refining && scene.mode != Mode::kHybrid)
+    throw UserError(fmt::format("{}: its scene is in {} mode; refine takes a hybrid run's file",
+                                options.refine_input, to_string(scene.mode)));
   // A render is checked before the run: a bad --size must not cost a simulation.
   std::optional<RenderPlan> render_plan;
   if (!options.render.empty()) {
@@ -99,6 +142,7 @@ int run_command(const RunOptions& options) {
   const std::string output_path = output_path_of(options, scene);
   FileRoles files;
   files.input(options.scene_path, "the scene");
+  if (refining) files.input(options.refine_input, "the coarse trajectory");
   if (options.render_texture) files.input(*options.render_texture, "--texture");
   if (scene.render) files.input(scene.render->texture, "render.texture");
   files.output(output_path, "the output");
@@ -112,7 +156,12 @@ int run_command(const RunOptions& options) {
   // From here a signal is exit 130: during the set-up (seconds on a large
   // lattice) nothing is written yet, later the frames so far are kept.
   InterruptGuard interrupt;
-  const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
+  const std::unique_ptr<hybrid::Simulation> simulation =
+      refining ? hybrid::make_replay(scene,
+                                     [&source](int frame, std::vector<Vec3>& out) {
+                                       out = source->coarse_trajectory(frame);
+                                     })
+               : hybrid::make_simulation(scene);
   if (InterruptGuard::requested())
     throw Interrupted("run stopped by a signal during its set-up; nothing was written");
   StageTimes times;
@@ -123,6 +172,7 @@ int run_command(const RunOptions& options) {
   data::RunInfo info;
   info.mode = to_string(scene.mode);
   info.fields = scene.output.fields;
+  info.dense = scene.output.dense;
   info.effects = simulation->effects();
   info.scene_toml = scene.toml_text;
   info.version = std::string(version());
@@ -144,8 +194,10 @@ int run_command(const RunOptions& options) {
   double worst_residual = 0.0;
   const Lattice& lattice = simulation->lattice();
   data::FrameWriter writer(output_path, lattice, info, scene.output.flush_every);
-  Progress progress(Progress::wanted(options.quiet), scene.simulated_frames());
-  const int frames = scene.simulated_frames();
+  // refine: the frames the trajectory holds (fewer than the scene's when its run stopped early).
+  const int frames = refining ? std::min(scene.simulated_frames(), source->trajectory_frames())
+                              : scene.simulated_frames();
+  Progress progress(Progress::wanted(options.quiet), frames);
   std::vector<float> node_strain(scene.output.has_field("strain") ? lattice.node_count() : 0);
   double max_strain_seen = 0.0, total_wall_s = 0.0;
   auto since_write = std::chrono::steady_clock::now();
@@ -171,6 +223,7 @@ int run_command(const RunOptions& options) {
       }
     }
     if (status.diverged()) break;
+    if (!scene.output.dense) writer.append_trajectory(simulation->coarse_positions());
     max_strain_seen = std::max(max_strain_seen, strain.max);
     if (frame % scene.output.every == 0) {
       if (auto full = writer.out_of_room()) {  // stop while the file is whole
@@ -209,9 +262,15 @@ int run_command(const RunOptions& options) {
     }
   }
   progress.done();
-  if (status.complete())  // every file says why it ended, a complete one too
+  const bool refined = refining && status.complete();
+  if (refined) {  // the run's own ending, and where the frames came from
+    const RunStatus ran = status_of(*source);
+    status = {ran.state, fmt::format("refined from {}, {} frames written; its run: {}",
+                                     options.refine_input, writer.frames_written(), ran.reason)};
+  } else if (status.complete()) {  // every file says why it ended, a complete one too
     status.reason = fmt::format("all {} frames simulated (t = 0 .. {:.4g} s), {} written", frames,
                                 (frames - 1) / scene.fps, writer.frames_written());
+  }
   writer.finish(status);
 
   const double ms_per_frame = 1000.0 * total_wall_s / std::max(1, writer.frames_written());
@@ -225,6 +284,14 @@ int run_command(const RunOptions& options) {
                status.reason, writer.frames_written());
     return int(ExitCode::kIoFailure);
   }
+  if (refined) {  // the file keeps the run's status; refine itself succeeded
+    if (!options.summary) return 0;
+    fmt::print("refined: {} of {} x {} nodes from {}, {:.2f} ms/frame (the run: {}) -> {}\n",
+               counted(writer.frames_written(), "frame"), lattice.rows, lattice.cols,
+               options.refine_input, ms_per_frame, to_string(status.state), writer.path());
+    if (!rendered.empty()) fmt::print("{}\n", rendered);
+    return 0;
+  }
   if (status.diverged()) {
     fmt::print(stderr, "error: simulation diverged {}; {} good frames kept in {}\n", status.reason,
                writer.frames_written(), writer.path());
@@ -236,6 +303,11 @@ int run_command(const RunOptions& options) {
              lattice.cols, to_string(scene.mode), ms_per_frame, simulation->stepping_summary(),
              100.0 * max_strain_seen, writer.path());
   for (const std::string& note : scene.notes) fmt::print("{}\n", note);
+  if (!scene.output.dense)
+    fmt::print(
+        "note: output.dense = false: {} keeps the coarse trajectory, not the dense frames; "
+        "`flag-sim refine {} -o DENSE.h5` recomputes them\n",
+        writer.path(), writer.path());
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   if (unconverged_frames > 0 && worst_residual > 0.0)
     fmt::print(

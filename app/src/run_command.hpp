@@ -24,6 +24,13 @@ struct RunOptions {
   std::optional<std::string> render_texture;  ///< --texture
   std::optional<std::string> render_color;    ///< --color strain|speed
   bool quiet = false;
+  /// `flag-sim refine IN.h5`: the dense frames of IN's stored coarse trajectory
+  /// ([output] dense = false) instead of a simulation; its scene is IN's
+  /// attribute `scene`, with `sets` of the infill's and output's keys only.
+  std::string refine_input;
+  /// false: no summary line and notes on standard output (a refine that
+  /// render or export makes for themselves, dense_input.hpp).
+  bool summary = true;
 };
 
 int run_command(const RunOptions& options);

@@ -111,6 +111,15 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
                  "or \"infill\"");
     scene.wrinkles.reset();
   }
+  // Only the hybrid has a coarse trajectory that reproduces its dense frames.
+  if (scene.mode != Mode::kHybrid && !scene.output.dense) {
+    unused_setting("output.dense", "output.dense = false",
+                   fmt::format("output.dense = false keeps a hybrid run's coarse trajectory in "
+                               "place of its dense frames; {} mode has none (its frames are its "
+                               "physics or its keyframes): leave the key out",
+                               to_string(scene.mode)));
+    scene.output.dense = true;
+  }
   // The implicit backend alone solves a linear system and halves its steps;
   // elsewhere these keys would be silently ignored.
   if (const std::optional<Backend> backend = backend_of(scene);

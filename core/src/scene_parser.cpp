@@ -75,6 +75,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "output.every",
                                          "output.flush_every",
                                          "output.fields",
+                                         "output.dense",
                                          "render.style",
                                          "render.size",
                                          "render.texture",
@@ -382,6 +383,7 @@ void read_run_tables(TableReader& root, Scene& scene) {
     scene.output.flush_every =
         int(in.integer("flush_every", scene.output.flush_every, 1, kMaxFrames));
     scene.output.fields = in.choice_set("fields", scene.output.fields, {"strain", "velocity"});
+    scene.output.dense = in.boolean("dense", scene.output.dense);
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("render")) {

@@ -162,6 +162,13 @@ std::string TableReader::string(std::string_view key, std::string fallback) {
   return *node->value<std::string>();
 }
 
+bool TableReader::boolean(std::string_view key, bool fallback) {
+  const toml::node* node = lookup(key);
+  if (!node) return fallback;
+  if (!node->is_boolean()) expected(key, *node, "true or false");
+  return *node->value<bool>();
+}
+
 std::string TableReader::choice(std::string_view key, std::string fallback,
                                 std::vector<std::string_view> choices) {
   const toml::node* node = lookup(key);

@@ -67,6 +67,7 @@ class TableReader {
   long long integer(std::string_view key, long long fallback, long long low, long long high);
   std::optional<long long> optional_integer(std::string_view key, long long low, long long high);
   std::string string(std::string_view key, std::string fallback);
+  bool boolean(std::string_view key, bool fallback);
   /// One of `choices`; the message lists them and suggests the closest.
   std::string choice(std::string_view key, std::string fallback,
                      std::vector<std::string_view> choices);

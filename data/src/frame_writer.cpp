@@ -93,7 +93,7 @@ struct FrameWriter::Impl {
   h5::Handle file;
   h5::Handle time, positions, velocity, strain, max_strain, mean_strain, stage_seconds,
       wall_seconds, kinetic;
-  h5::Handle coarse_positions;
+  h5::Handle coarse_positions, trajectory;
   std::vector<h5::Handle> series;
   std::vector<float> position_buffer, coarse_buffer;  ///< float32 xyz, as stored
   std::vector<double> times;
@@ -165,11 +165,15 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   h5::Handle stats = make_group(root, "stats");
   h5::Handle lattice_group = make_group(root, "lattice");
   impl_->time = make_series(frames.get(), "time", H5T_IEEE_F64LE, {}, "s");
-  impl_->positions = make_series(frames.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m");
+  if (info.dense)
+    impl_->positions = make_series(frames.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m");
+  else
+    ok = ok && h5::write_int_attribute(root, "dense", 0);
   const auto wants = [&info](const char* field) {
-    return std::find(info.fields.begin(), info.fields.end(), field) != info.fields.end();
+    return info.dense &&
+           std::find(info.fields.begin(), info.fields.end(), field) != info.fields.end();
   };
-  impl_->fields = info.fields;
+  if (info.dense) impl_->fields = info.fields;
   if (wants("velocity"))
     impl_->velocity = make_series(frames.get(), "velocity", H5T_IEEE_F32LE, {rows, cols, 3}, "m/s");
   if (wants("strain"))
@@ -189,6 +193,8 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
     ok = ok && impl_->series.back().valid();
   }
   if (!info.coarse_rows.empty()) ok = ok && write_coarse_layout(root, info);
+  if (!info.dense && info.coarse_rows.empty())
+    throw std::invalid_argument("FrameWriter: a file without dense frames needs the coarse layout");
 
   // /lattice/rest_positions [J, K, 3] float32
   const hsize_t rest_dims[3] = {rows, cols, 3};
@@ -205,7 +211,7 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
     for (int c = 0; c < 3; ++c) buffer[3 * i + c] = float(rest_positions[i][c]);
   ok = ok && rest.valid() && h5::write_string_attribute(rest.get(), "units", "m") &&
        H5Dwrite(rest.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) >= 0;
-  ok = ok && impl_->time.valid() && impl_->positions.valid() &&
+  ok = ok && impl_->time.valid() && (impl_->positions.valid() || !info.dense) &&
        (impl_->velocity.valid() || !wants("velocity")) &&
        (impl_->strain.valid() || !wants("strain")) && impl_->max_strain.valid() &&
        impl_->mean_strain.valid() && impl_->stage_seconds.valid() && impl_->wall_seconds.valid() &&
@@ -226,6 +232,16 @@ bool FrameWriter::write_coarse_layout(hid_t root, const RunInfo& info) {
   impl_->coarse_positions =
       make_series(coarse.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m");
   impl_->coarse_buffer.assign(rows * cols * 3, 0.0f);
+  if (!info.dense) {
+    impl_->trajectory =
+        make_series(coarse.get(), "trajectory", H5T_IEEE_F64LE, {rows, cols, 3}, "m");
+    if (!impl_->trajectory.valid() ||
+        !h5::write_string_attribute(
+            impl_->trajectory.get(), "meaning",
+            "the coarse nodes the infill took at every simulated frame n (t = n / fps), "
+            "output.every or not; `flag-sim refine` fills the dense frames from them"))
+      return false;
+  }
   return impl_->coarse_positions.valid() &&
          write_index_list(coarse.get(), "rows", info.coarse_rows) &&
          write_index_list(coarse.get(), "cols", info.coarse_cols);
@@ -248,7 +264,9 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
   const auto start = std::chrono::steady_clock::now();
   const std::size_t nodes = lattice_.node_count();
   const bool velocity = impl_->velocity.valid(), strain = impl_->strain.valid();
-  if (fields.positions_m.size() != nodes || (velocity && fields.velocities_m_s.size() != nodes) ||
+  const bool dense = impl_->positions.valid();
+  if ((dense && fields.positions_m.size() != nodes) ||
+      (velocity && fields.velocities_m_s.size() != nodes) ||
       (strain && fields.strain.size() != nodes))
     throw std::invalid_argument(fmt::format(
         "FrameWriter::write_frame: {} positions, {} velocities, {} strains for {} nodes",
@@ -265,9 +283,11 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
                     impl_->coarse_buffer.data());
   }
   std::vector<float>& buffer = impl_->position_buffer;
-  to_float_xyz(fields.positions_m, buffer);
-  ok = ok && append_row(impl_->time.get(), index, H5T_NATIVE_DOUBLE, &time_s) &&
-       append_row(impl_->positions.get(), index, H5T_NATIVE_FLOAT, buffer.data());
+  ok = ok && append_row(impl_->time.get(), index, H5T_NATIVE_DOUBLE, &time_s);
+  if (dense) {
+    to_float_xyz(fields.positions_m, buffer);
+    ok = ok && append_row(impl_->positions.get(), index, H5T_NATIVE_FLOAT, buffer.data());
+  }
   if (velocity) {
     to_float_xyz(fields.velocities_m_s, buffer);
     ok = ok && append_row(impl_->velocity.get(), index, H5T_NATIVE_FLOAT, buffer.data());
@@ -300,12 +320,29 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
     throw IoError(fmt::format("{}: flushing to disk failed (disk full?)", partial_path()));
 }
 
+void FrameWriter::append_trajectory(std::span<const Vec3> coarse_m) {
+  if (!impl_->trajectory.valid() || coarse_m.size() * 3 != impl_->coarse_buffer.size())
+    throw std::invalid_argument(
+        fmt::format("FrameWriter::append_trajectory: {} coarse nodes for {}, in a file {} dense",
+                    coarse_m.size(), impl_->coarse_buffer.size() / 3,
+                    impl_->trajectory.valid() ? "not" : "that is"));
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  if (!append_row(impl_->trajectory.get(), hsize_t(trajectory_frames_), H5T_NATIVE_DOUBLE,
+                  coarse_m.front().data()))
+    throw IoError(fmt::format("{}: writing the coarse trajectory's frame {} failed (disk full?)",
+                              partial_path(), trajectory_frames_));
+  ++trajectory_frames_;
+}
+
 std::optional<std::string> FrameWriter::out_of_room() const {
-  // positions and velocities (float32 xyz), strain (float32)
-  const std::uintmax_t node_bytes =
-      12 + (impl_->velocity.valid() ? 12 : 0) + (impl_->strain.valid() ? 4 : 0);
-  const std::uintmax_t frame_bytes = std::uintmax_t(lattice_.node_count()) * node_bytes +
-                                     impl_->coarse_buffer.size() * 4 + impl_->stage_count * 8 + 64;
+  // positions and velocities (float32 xyz), strain (float32); or the trajectory's float64 xyz
+  const std::uintmax_t node_bytes = (impl_->positions.valid() ? 12 : 0) +
+                                    (impl_->velocity.valid() ? 12 : 0) +
+                                    (impl_->strain.valid() ? 4 : 0);
+  const std::uintmax_t frame_bytes =
+      std::uintmax_t(lattice_.node_count()) * node_bytes + impl_->coarse_buffer.size() * 4 +
+      (impl_->trajectory.valid() ? impl_->coarse_buffer.size() * 8 : 0) + impl_->stage_count * 8 +
+      64;
   const std::uintmax_t pending = std::uintmax_t(frames_ % flush_every_) + 1;
   const std::uintmax_t need = 2 * pending * frame_bytes + (std::uintmax_t(1) << 20);
   return no_room_for(partial_path(), need);
@@ -316,7 +353,8 @@ void FrameWriter::finish(const RunStatus& status) {
   bool ok = h5::write_string_attribute(root, "status", std::string(to_string(status.state)));
   if (!status.reason.empty())
     ok = ok && h5::write_string_attribute(root, "status_reason", status.reason);
-  ok = ok && write_xdmf_views(root, lattice_, impl_->times.size(), impl_->fields) &&
+  const bool dense = impl_->positions.valid();  // else no frames for ParaView to show
+  ok = ok && (!dense || write_xdmf_views(root, lattice_, impl_->times.size(), impl_->fields)) &&
        H5Fflush(root, H5F_SCOPE_GLOBAL) >= 0;
   const std::vector<double> times = std::move(impl_->times);
   const std::vector<std::string> fields = std::move(impl_->fields);
@@ -329,6 +367,10 @@ void FrameWriter::finish(const RunStatus& status) {
 
   fs::path sidecar(path_);
   sidecar.replace_extension(".xdmf");
+  if (!dense) {  // a sidecar left by an earlier run of this output would name frames not here
+    fs::remove(sidecar, ec);
+    return;
+  }
   std::ofstream xdmf(sidecar);
   xdmf << xdmf_text(fs::path(path_).filename().string(), lattice_, times, fields);
   if (!xdmf) throw IoError(fmt::format("{}: cannot write the XDMF sidecar", sidecar.string()));

@@ -86,9 +86,16 @@ OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Imp
                     "expected \"{}\")",
                     path, format, kFormat));
   const hid_t file = impl_->file.get();
-  if (H5Lexists(file, "/frames", H5P_DEFAULT) <= 0 ||
-      H5Lexists(file, "/frames/positions", H5P_DEFAULT) <= 0)
-    throw UserError(fmt::format("{}: flag-sim file without /frames/positions", path));
+  if (H5Lexists(file, "/frames", H5P_DEFAULT) <= 0)
+    throw UserError(fmt::format("{}: flag-sim file without /frames", path));
+  if (H5Lexists(file, "/frames/positions", H5P_DEFAULT) <= 0) {
+    // [output] dense = false: the coarse trajectory in place of the dense frames.
+    if (number_attribute("dense", 1.0) != 0.0 || H5Lexists(file, "/coarse", H5P_DEFAULT) <= 0 ||
+        H5Lexists(file, "/coarse/trajectory", H5P_DEFAULT) <= 0)
+      throw UserError(fmt::format("{}: flag-sim file without /frames/positions", path));
+    open_coarse_only();
+    return;
+  }
   h5::Handle set = h5::dataset(H5Dopen2(file, "/frames/positions", H5P_DEFAULT));
   h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
   hsize_t dims[4] = {0, 0, 0, 0};
@@ -117,6 +124,40 @@ OutputReader::OutputReader(const std::string& path) : impl_(std::make_unique<Imp
 }
 
 OutputReader::~OutputReader() = default;
+
+void OutputReader::open_coarse_only() {
+  const hid_t file = impl_->file.get();
+  dense_ = false;
+  // The dense lattice's shape from its rest positions, the frames from their times.
+  const auto shape_of = [&](const char* name, int rank, hsize_t* dims) {
+    if (H5Lexists(file, name, H5P_DEFAULT) <= 0) return false;
+    h5::Handle set = h5::dataset(H5Dopen2(file, name, H5P_DEFAULT));
+    h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
+    return H5Sget_simple_extent_ndims(space.get()) == rank &&
+           H5Sget_simple_extent_dims(space.get(), dims, nullptr) >= 0;
+  };
+  hsize_t rest[3] = {0, 0, 0}, time[1] = {0}, trajectory[4] = {0, 0, 0, 0};
+  if (!shape_of("/lattice/rest_positions", 3, rest) || rest[2] != 3 ||
+      !shape_of("/frames/time", 1, time) || !shape_of("/coarse/trajectory", 4, trajectory) ||
+      trajectory[3] != 3)
+    throw UserError(fmt::format(
+        "{}: a coarse-trajectory file (dense = 0) needs /lattice/rest_positions [J, K, 3], "
+        "/frames/time [T] and /coarse/trajectory [S, Jc, Kc, 3]",
+        path_));
+  if (rest[0] < 2 || rest[1] < 2 || rest[0] > hsize_t(limits::kLatticeSide) ||
+      rest[1] > hsize_t(limits::kLatticeSide) ||
+      rest[0] * rest[1] > hsize_t(limits::kLatticeNodes) || time[0] > hsize_t(limits::kFrames) ||
+      trajectory[0] > hsize_t(limits::kFrames) || trajectory[1] < 2 || trajectory[2] < 2 ||
+      trajectory[1] > rest[0] || trajectory[2] > rest[1])
+    throw UserError(fmt::format(
+        "{}: declares {} frames of {} x {} nodes and a coarse trajectory of {} frames of {} x {}, "
+        "more than a flag-sim scene can make",
+        path_, time[0], rest[0], rest[1], trajectory[0], trajectory[1], trajectory[2]));
+  frames_ = int(time[0]);
+  rows_ = int(rest[0]);
+  cols_ = int(rest[1]);
+  trajectory_frames_ = int(trajectory[0]);
+}
 
 void OutputReader::read_what_commands_read() const {
   // Each read as a command makes it; one that fails (a field this file lacks
@@ -148,6 +189,8 @@ void OutputReader::read_what_commands_read() const {
     quietly([&] { node_strain(frame); });
     quietly([&] { coarse_positions(frame); });
   }
+  for (const int frame : {0, trajectory_frames_ - 1})
+    if (frame >= 0) quietly([&] { coarse_trajectory(frame); });
 }
 
 std::string OutputReader::attribute(const char* name) const {
@@ -200,6 +243,11 @@ std::vector<double> OutputReader::frame_field(const char* name, int frame, int c
 }
 
 std::vector<Vec3> OutputReader::positions(int frame) const {
+  if (!dense_)
+    throw UserError(fmt::format(
+        "{}: holds the coarse trajectory only (output.dense = false); `flag-sim refine {} -o "
+        "DENSE.h5` recomputes the dense frames",
+        path_, path_));
   return to_vec3(frame_field("/frames/positions", frame, 3));
 }
 
@@ -217,19 +265,27 @@ std::vector<Vec3> OutputReader::rest_positions() const {
 }
 
 std::vector<Vec3> OutputReader::coarse_positions(int frame) const {
+  if (frame < 0 || frame >= frames_) return {};
+  return coarse_frame("/coarse/positions", frame);
+}
+
+std::vector<Vec3> OutputReader::coarse_trajectory(int frame) const {
+  if (frame < 0 || frame >= trajectory_frames_) return {};
+  return coarse_frame("/coarse/trajectory", frame);
+}
+
+std::vector<Vec3> OutputReader::coarse_frame(const char* name, int frame) const {
   const hid_t file = impl_->file.get();
-  if (frame < 0 || frame >= frames_ || H5Lexists(file, "/coarse", H5P_DEFAULT) <= 0 ||
-      H5Lexists(file, "/coarse/positions", H5P_DEFAULT) <= 0)
+  if (H5Lexists(file, "/coarse", H5P_DEFAULT) <= 0 || H5Lexists(file, name, H5P_DEFAULT) <= 0)
     return {};
-  h5::Handle set = h5::dataset(H5Dopen2(file, "/coarse/positions", H5P_DEFAULT));
+  h5::Handle set = h5::dataset(H5Dopen2(file, name, H5P_DEFAULT));
   h5::Handle file_space = h5::dataspace(H5Dget_space(set.get()));
   hsize_t dims[4] = {0, 0, 0, 0};
   if (H5Sget_simple_extent_ndims(file_space.get()) != 4 ||
       H5Sget_simple_extent_dims(file_space.get(), dims, nullptr) < 0 || dims[3] != 3 ||
       dims[1] > hsize_t(rows_) || dims[2] > hsize_t(cols_))
-    throw UserError(
-        fmt::format("{}: /coarse/positions is not [T, Jc, Kc, 3] with Jc <= {}, Kc <= {}", path_,
-                    rows_, cols_));
+    throw UserError(fmt::format("{}: {} is not [T, Jc, Kc, 3] with Jc <= {}, Kc <= {}", path_, name,
+                                rows_, cols_));
   if (hsize_t(frame) >= dims[0]) return {};
   // One frame, as positions() reads: not the whole run for every frame.
   const hsize_t start[4] = {hsize_t(frame), 0, 0, 0};
@@ -239,7 +295,7 @@ std::vector<Vec3> OutputReader::coarse_positions(int frame) const {
   std::vector<double> flat(std::size_t(dims[1] * dims[2] * 3));
   if (H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT,
               flat.data()) < 0)
-    throw UserError(fmt::format("{}: cannot read /coarse/positions of frame {}", path_, frame));
+    throw UserError(fmt::format("{}: cannot read {} of frame {}", path_, name, frame));
   return to_vec3(flat);
 }
 

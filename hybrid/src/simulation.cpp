@@ -238,9 +238,11 @@ class InfillSimulation final : public Simulation {
 // on flag.fine every output frame, starting from the previous dense frame.
 class HybridSimulation final : public Simulation {
  public:
-  explicit HybridSimulation(const Scene& scene)
+  /// @param replay  where the coarse nodes come from instead of the physics (make_replay)
+  explicit HybridSimulation(const Scene& scene, CoarseFrames replay = {})
       : coarse_scene_(on_coarse_lattice(scene)),
         physics_(integrator_for(coarse_scene_)),
+        replay_(std::move(replay)),
         dense_(scene, (*scene.flag.coarse)[0], (*scene.flag.coarse)[1]),
         paper_infill_(infill_solver_of(scene) == InfillSolverKind::kPaper) {
     dense_.hold_pins(scene.flag.pin);
@@ -261,10 +263,10 @@ class HybridSimulation final : public Simulation {
     dense_.register_stages(times);
   }
   void advance_frame(StageTimes* times) override {
-    physics_->advance_frame(times);
+    ++frame_;
+    if (!replay_) physics_->advance_frame(times);
     run_timed(times, slack_stage_, [&] { make_reachable(); });
     dense_.fill(reachable_, times);
-    ++frame_;
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
@@ -294,8 +296,8 @@ class HybridSimulation final : public Simulation {
   void set_state(const SimulationState& state) override {
     set_physics_state(*physics_, state.physics);
     dense_.restore(state);
-    make_reachable();  // the nodes the last fill used: a function of the physics state
     frame_ = state.frame;
+    make_reachable();  // the nodes the last fill used: a function of the physics state
   }
 
  private:
@@ -312,6 +314,7 @@ class HybridSimulation final : public Simulation {
 
   Scene coarse_scene_;
   std::unique_ptr<physics::ClothIntegrator> physics_;
+  CoarseFrames replay_;  ///< empty: the physics moves the coarse nodes
   // Only the paper solver needs slack; with the coarse lattice equal to the
   // fine one there are no fibers to fill between coarse nodes either.
   bool needs_slack() const {
@@ -319,6 +322,15 @@ class HybridSimulation final : public Simulation {
     return paper_infill_ && (grid.row_stride > 1 || grid.col_stride > 1);
   }
   void make_reachable() {
+    if (replay_) {  // stored as the infill took them: after any slack
+      replay_(frame_, reachable_);
+      if (reachable_.size() != physics_->state().x_m.size())
+        throw UserError(
+            fmt::format("the coarse trajectory's frame {} has {} nodes, the scene's "
+                        "coarse lattice {}",
+                        frame_, reachable_.size(), physics_->state().x_m.size()));
+      return;
+    }
     reachable_ = physics_->state().x_m;
     if (!needs_slack()) return;
     infill::limit_stretch(physics_->model().lattice, physics_->model().pinned, reachable_,
@@ -388,6 +400,15 @@ std::unique_ptr<Simulation> make_simulation(const Scene& scene) {
   if (scene.mode == Mode::kInfill) return std::make_unique<InfillSimulation>(scene);
   if (scene.mode == Mode::kHybrid) return std::make_unique<HybridSimulation>(scene);
   return std::make_unique<FullLatticeSimulation>(scene);
+}
+
+std::unique_ptr<Simulation> make_replay(const Scene& scene, CoarseFrames coarse) {
+  if (scene.mode != Mode::kHybrid)
+    throw UserError(
+        fmt::format("a coarse trajectory is replayed by the hybrid; this scene's mode "
+                    "is {}",
+                    to_string(scene.mode)));
+  return std::make_unique<HybridSimulation>(scene, std::move(coarse));
 }
 
 }  // namespace flagsim::hybrid

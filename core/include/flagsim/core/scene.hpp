@@ -171,6 +171,10 @@ struct Output {
   /// Per-node fields written besides the positions: "strain" (/frames/strain)
   /// and "velocity" (/frames/velocity); both unless the scene lists fewer.
   std::vector<std::string> fields = {"strain", "velocity"};
+  /// false (hybrid only): the file keeps the coarse trajectory that the infill
+  /// reproduces the dense frames from (/coarse/trajectory, float64, every
+  /// simulated frame), not the dense frames; `flag-sim refine` recomputes them.
+  bool dense = true;
   bool has_field(std::string_view name) const {
     return std::find(fields.begin(), fields.end(), name) != fields.end();
   }

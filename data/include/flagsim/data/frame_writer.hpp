@@ -47,6 +47,10 @@ struct RunInfo {
   std::vector<Series> series;
   /// Per-node fields besides the positions ([output] fields): "strain", "velocity".
   std::vector<std::string> fields = {"strain", "velocity"};
+  /// false ([output] dense = false, hybrid): no /frames/positions nor per-node
+  /// fields, no XDMF; /coarse/trajectory instead (append_trajectory), and the
+  /// root attribute `dense` = 0.
+  bool dense = true;
 };
 
 /// Per-frame statistics.
@@ -61,7 +65,7 @@ struct FrameStats {
 
 /// One frame's per-node fields, each [J*K] row-major.
 struct FrameFields {
-  std::span<const Vec3> positions_m;     ///< /frames/positions, m
+  std::span<const Vec3> positions_m;     ///< /frames/positions, m (empty when not dense)
   std::span<const Vec3> velocities_m_s;  ///< /frames/velocity, m/s (when RunInfo::fields has it)
   std::span<const float> strain;  ///< /frames/strain: each node's largest link strain, 1 (ditto)
   std::span<const Vec3> coarse_m = {};  ///< [Jc*Kc] /coarse/positions, when RunInfo named them
@@ -80,6 +84,10 @@ class FrameWriter {
   /// column of this frame. Throws IoError on failure, std::invalid_argument
   /// when a field's size does not match the lattice (or the coarse layout).
   void write_frame(double time_s, const FrameFields& fields, const FrameStats& stats);
+  /// Appends one simulated frame's coarse nodes [Jc*Kc] m, float64 as the infill
+  /// took them, to /coarse/trajectory (files with RunInfo::dense false; every
+  /// simulated frame, also those output.every leaves out). Throws IoError.
+  void append_trajectory(std::span<const Vec3> coarse_m);
   /// Sets the root attributes `status` and (when it has one) `status_reason`,
   /// writes the XDMF views, flushes, closes, renames the file to its final
   /// name and writes the XDMF sidecar. Throws IoError.
@@ -104,6 +112,7 @@ class FrameWriter {
   Lattice lattice_;
   int flush_every_;
   int frames_ = 0;
+  int trajectory_frames_ = 0;
 };
 
 /// The XDMF text for the frames of `h5_name` (a path relative to the sidecar)

@@ -28,6 +28,14 @@ class OutputReader {
   int rows() const { return rows_; }
   int cols() const { return cols_; }
   int frame_count() const { return frames_; }
+  /// false for a file of [output] dense = false: no dense frames (positions()
+  /// and the per-node fields throw), the coarse trajectory instead.
+  bool dense() const { return dense_; }
+  /// Frames in /coarse/trajectory (every simulated frame); 0 in a dense file.
+  int trajectory_frames() const { return trajectory_frames_; }
+  /// The coarse nodes the infill took at simulated frame n, [Jc*Kc] m, float64
+  /// as stored; empty past the trajectory.
+  std::vector<Vec3> coarse_trajectory(int frame) const;
 
   std::vector<double> times_s() const;
   /// Positions of frame t, [J*K] m (stored as float32).
@@ -58,11 +66,16 @@ class OutputReader {
   /// One frame of a per-node field under /frames ([T, J, K] for 1 component,
   /// [T, J, K, components] otherwise), shape checked first; empty when absent.
   std::vector<double> frame_field(const char* name, int frame, int components) const;
+  /// One frame [Jc*Kc] of a /coarse series ([T, Jc, Kc, 3]), shape checked; empty when absent
+  /// or past its end.
+  std::vector<Vec3> coarse_frame(const char* name, int frame) const;
+  void open_coarse_only();
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string path_;
-  int rows_ = 0, cols_ = 0, frames_ = 0;
+  int rows_ = 0, cols_ = 0, frames_ = 0, trajectory_frames_ = 0;
+  bool dense_ = true;
 };
 
 }  // namespace flagsim::data

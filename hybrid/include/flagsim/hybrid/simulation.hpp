@@ -1,6 +1,7 @@
 #pragma once
 // What `flag-sim run` drives, whatever the mode: a state advanced frame by
 // frame, read by the run loop (checks, output) but never reached into.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -84,5 +85,16 @@ std::optional<std::string> frame_divergence(const Simulation& simulation, const 
 
 /// The simulation of the scene's mode, at its frame 0.
 std::unique_ptr<Simulation> make_simulation(const Scene& scene);
+
+/// Writes the coarse nodes [Jc*Kc] m the infill takes at simulated frame n
+/// (frame 0 first, then one frame at a time) into `out`.
+using CoarseFrames = std::function<void(int frame, std::vector<Vec3>& out)>;
+
+/// The hybrid of `scene` with its coarse nodes read from `coarse` instead of
+/// simulated (`flag-sim refine`: the dense frames of a run that kept only its
+/// coarse trajectory; bit for bit those of the run at its own lattice, since
+/// the infill takes the same nodes in the same order). The physics is built
+/// for what the file says of it (effects, stepping) but never stepped.
+std::unique_ptr<Simulation> make_replay(const Scene& scene, CoarseFrames coarse);
 
 }  // namespace flagsim::hybrid
