@@ -173,6 +173,7 @@ int run_command(const RunOptions& options) {
   info.mode = to_string(scene.mode);
   info.fields = scene.output.fields;
   info.dense = scene.output.dense;
+  info.compression = scene.output.compression;
   info.effects = simulation->effects();
   info.scene_toml = scene.toml_text;
   info.version = std::string(version());

@@ -76,6 +76,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "output.flush_every",
                                          "output.fields",
                                          "output.dense",
+                                         "output.compression",
                                          "render.style",
                                          "render.size",
                                          "render.texture",
@@ -384,6 +385,7 @@ void read_run_tables(TableReader& root, Scene& scene) {
         int(in.integer("flush_every", scene.output.flush_every, 1, kMaxFrames));
     scene.output.fields = in.choice_set("fields", scene.output.fields, {"strain", "velocity"});
     scene.output.dense = in.boolean("dense", scene.output.dense);
+    scene.output.compression = int(in.integer("compression", scene.output.compression, 0, 9));
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("render")) {

@@ -28,7 +28,7 @@ namespace {
 // frame (or, for small rows, 256 frames) at a time, with its `units` attribute
 // (an invalid handle when either cannot be made).
 h5::Handle make_series(hid_t parent, const char* name, hid_t element_type,
-                       const std::vector<hsize_t>& tail, const char* units) {
+                       const std::vector<hsize_t>& tail, const char* units, int compression = 0) {
   std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{1};
   hsize_t row = 1;
   for (hsize_t d : tail) {
@@ -42,6 +42,10 @@ h5::Handle make_series(hid_t parent, const char* name, hid_t element_type,
       h5::dataspace(H5Screate_simple(int(dims.size()), dims.data(), max_dims.data()));
   h5::Handle props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_chunk(props.get(), int(chunk.size()), chunk.data());
+  if (compression > 0) {  // the bytes of each float regrouped first: deflate finds far more
+    H5Pset_shuffle(props.get());
+    H5Pset_deflate(props.get(), unsigned(compression));
+  }
   H5Pset_obj_track_times(props.get(), false);  // no timestamps: same input, same bytes
   h5::Handle set = h5::dataset(
       H5Dcreate2(parent, name, element_type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT));
@@ -161,12 +165,14 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
          h5::write_string_attribute(root, (number.name + ".units").c_str(), number.units);
 
   const hsize_t rows = hsize_t(lattice.rows), cols = hsize_t(lattice.cols);
+  const int level = info.compression;
   h5::Handle frames = make_group(root, "frames");
   h5::Handle stats = make_group(root, "stats");
   h5::Handle lattice_group = make_group(root, "lattice");
   impl_->time = make_series(frames.get(), "time", H5T_IEEE_F64LE, {}, "s");
   if (info.dense)
-    impl_->positions = make_series(frames.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m");
+    impl_->positions =
+        make_series(frames.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m", level);
   else
     ok = ok && h5::write_int_attribute(root, "dense", 0);
   const auto wants = [&info](const char* field) {
@@ -175,9 +181,10 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   };
   if (info.dense) impl_->fields = info.fields;
   if (wants("velocity"))
-    impl_->velocity = make_series(frames.get(), "velocity", H5T_IEEE_F32LE, {rows, cols, 3}, "m/s");
+    impl_->velocity =
+        make_series(frames.get(), "velocity", H5T_IEEE_F32LE, {rows, cols, 3}, "m/s", level);
   if (wants("strain"))
-    impl_->strain = make_series(frames.get(), "strain", H5T_IEEE_F32LE, {rows, cols}, "1");
+    impl_->strain = make_series(frames.get(), "strain", H5T_IEEE_F32LE, {rows, cols}, "1", level);
   impl_->max_strain = make_series(stats.get(), "max_strain", H5T_IEEE_F32LE, {}, "1");
   impl_->mean_strain = make_series(stats.get(), "mean_strain", H5T_IEEE_F32LE, {}, "1");
   impl_->stage_count = info.stages.size();
@@ -229,12 +236,12 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
 bool FrameWriter::write_coarse_layout(hid_t root, const RunInfo& info) {
   h5::Handle coarse = make_group(root, "coarse");
   const hsize_t rows = info.coarse_rows.size(), cols = info.coarse_cols.size();
-  impl_->coarse_positions =
-      make_series(coarse.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3}, "m");
+  impl_->coarse_positions = make_series(coarse.get(), "positions", H5T_IEEE_F32LE, {rows, cols, 3},
+                                        "m", info.compression);
   impl_->coarse_buffer.assign(rows * cols * 3, 0.0f);
   if (!info.dense) {
-    impl_->trajectory =
-        make_series(coarse.get(), "trajectory", H5T_IEEE_F64LE, {rows, cols, 3}, "m");
+    impl_->trajectory = make_series(coarse.get(), "trajectory", H5T_IEEE_F64LE, {rows, cols, 3},
+                                    "m", info.compression);
     if (!impl_->trajectory.valid() ||
         !h5::write_string_attribute(
             impl_->trajectory.get(), "meaning",

@@ -169,6 +169,29 @@ TEST(Run, OutputEveryKeepsEveryNthFrame) {
   EXPECT_EQ(reader.times_s(), (std::vector<double>{0.0, 0.1, 0.2}));
 }
 
+TEST(Run, CompressionKeepsEveryValueAndTakesLessRoom) {
+  // [output] compression: HDF5's shuffle + deflate on the per-node datasets,
+  // lossless; the readers take it as they take the plain file.
+  TempDir dir;
+  for (const char* level : {"0", "4"})
+    ASSERT_EQ(run_flag_sim({"run", "--quiet", "--frames", "4", "--set", "flag.fine=[33,49]",
+                            "--set", std::string("output.compression=") + level, "-o",
+                            std::string("c") + level + ".h5"},
+                           dir.path())
+                  .exit_code,
+              0);
+  EXPECT_EQ(all_positions(dir.file("c4.h5")), all_positions(dir.file("c0.h5")));
+  const data::OutputReader plain(dir.file("c0.h5")), packed(dir.file("c4.h5"));
+  EXPECT_EQ(packed.velocities(3), plain.velocities(3));
+  EXPECT_EQ(packed.node_strain(3), plain.node_strain(3));
+  // 79% of the plain file's size measured here (76% on the default 129 x 193, README).
+  EXPECT_LT(fs::file_size(dir.file("c4.h5")), fs::file_size(dir.file("c0.h5")) * 85 / 100);
+  const ProcessResult bad =
+      run_flag_sim({"run", "--quiet", "--set", "output.compression=10", "-o", "x.h5"}, dir.path());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("output.compression"), std::string::npos) << bad.err;
+}
+
 TEST(Validate, PrintsWhatWouldRun) {
   TempDir dir;
   dir.write("windy.toml", kWindy);

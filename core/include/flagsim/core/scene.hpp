@@ -175,6 +175,10 @@ struct Output {
   /// reproduces the dense frames from (/coarse/trajectory, float64, every
   /// simulated frame), not the dense frames; `flag-sim refine` recomputes them.
   bool dense = true;
+  /// HDF5's deflate level (0-9, with the shuffle filter before it) for the
+  /// per-node datasets (/frames/positions, velocity, strain, /coarse/*),
+  /// chunked one frame a chunk; 0: stored as they are.
+  int compression = 0;
   bool has_field(std::string_view name) const {
     return std::find(fields.begin(), fields.end(), name) != fields.end();
   }

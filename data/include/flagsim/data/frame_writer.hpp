@@ -51,6 +51,8 @@ struct RunInfo {
   /// fields, no XDMF; /coarse/trajectory instead (append_trajectory), and the
   /// root attribute `dense` = 0.
   bool dense = true;
+  /// Deflate level 0-9 of the per-node datasets ([output] compression; 0: none).
+  int compression = 0;
 };
 
 /// Per-frame statistics.
