@@ -106,7 +106,7 @@ int export_command(const std::string& h5_path, const ExportOptions& options) {
   const data::OutputReader reader(dense.path());
   const int rows = reader.rows(), cols = reader.cols();
   const auto [first, last] =
-      resolve_frame_range(range.value_or(std::pair{0, -1}), reader.frame_count(), h5_path);
+      resolve_frame_range(range.value_or(kAllFrames), reader.frame_count(), h5_path);
   if (kind == ExportKind::kObjPerFrame) {  // every file it will write, however the names fall
     std::vector<std::string> names;
     for (int t = first; t < last; ++t) {

@@ -164,13 +164,14 @@ int run_main(int argc, char** argv) {
   render_cmd->add_option("file", render_input, "flag-sim output (.h5)")->required();
   render_cmd
       ->add_option("-o,--output", render.output,
-                   "OUT.mp4|.mkv|.webm|.gif, or a directory for PNG frames")
+                   "OUT.mp4|.mkv|.webm|.gif, a directory for PNG frames, or STILL.png (one frame)")
       ->required();
   render_cmd->add_option("--size", render.size, "Image size WxH (default 1280x720)");
   render_cmd->add_option("--style", render.style, "wireframe, shaded (default) or textured");
   render_cmd->add_option("--texture", render.texture, "PNG for --style textured");
-  render_cmd->add_option("--frames", render.frames,
-                         "Frames A:B (A to B - 1, as numbered in the file)");
+  render_cmd->add_option(
+      "--frames", render.frames,
+      "Frames A:B (A to B - 1) or frame N, as Python indexes the file's frames (-1: the last)");
   render_cmd->add_option("--camera", render.camera, "three-quarter (default), front or side");
   render_cmd->add_option("--eye", render.eye, "Camera position X,Y,Z in m (instead of --camera)");
   render_cmd->add_option("--target", render.target,
@@ -189,8 +190,9 @@ int run_main(int argc, char** argv) {
       ->add_option("-o,--output", export_options.output,
                    "NAME.pc2 (and NAME.obj), NAME.obj (one frame) or DIR/ (an OBJ per frame)")
       ->required();
-  export_cmd->add_option("--frames", export_options.frames,
-                         "Frames A:B (A to B - 1, as numbered in the file)");
+  export_cmd->add_option(
+      "--frames", export_options.frames,
+      "Frames A:B (A to B - 1) or frame N, as Python indexes the file's frames (-1: the last)");
 
   std::string plot_input, plot_output;
   CLI::App* plot_cmd = cli.add_subcommand(

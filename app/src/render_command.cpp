@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -85,10 +86,29 @@ void prepare_directory(const fs::path& dir, const std::string& what,
                                 probe.string()));
 }
 
+// -o NAME.png (any case), not a directory: one still.
+bool names_a_still(const std::string& output) {
+  std::string extension = fs::path(output).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  std::error_code ec;
+  return extension == ".png" && !ends_with(output, "/") && !fs::is_directory(output, ec);
+}
+
 }  // namespace
 
 void add_render_outputs(FileRoles& files, const std::string& output, const std::string& flag,
                         int first, int last) {
+  if (names_a_still(output)) {
+    if (last - first != 1)
+      throw UserError(fmt::format(
+          "{} {}: a PNG file holds one frame, and frames {} to {} are {}; pick one with --frames "
+          "N (-1: the last), or give a directory for PNG frames",
+          flag, output, first, last - 1, last - first));
+    files.output(output, flag);
+    files.output(output + ".partial", flag + " (while written)");
+    return;
+  }
   if (render::container_of(output)) {
     files.output(output, flag);
     files.output(output + ".partial", flag + " (while encoded)");
@@ -132,12 +152,13 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   // extension (run.avi) is almost surely meant as a video: refused rather than
   // made into a directory of that name. An existing directory, or a trailing
   // '/', says "directory" whatever the name.
-  if (!video && !ends_with(plan.output, "/") && !fs::is_directory(plan.output)) {
+  plan.still = names_a_still(plan.output);
+  if (!video && !plan.still && !ends_with(plan.output, "/") && !fs::is_directory(plan.output)) {
     const std::string extension = fs::path(plan.output).extension().string();
     if (!extension.empty() && extension != ".")
       throw UserError(fmt::format(
-          "{} {}: '{}' is not a video flag-sim writes (.mp4, .mkv, .webm, .gif); for PNG frames "
-          "give a directory (a trailing '/' makes any name one)",
+          "{} {}: '{}' is not a video flag-sim writes (.mp4, .mkv, .webm, .gif) nor a still "
+          "(.png, one frame); for PNG frames give a directory (a trailing '/' makes any name one)",
           request.output_flag, plan.output, extension));
   }
   if (video && !(fps > 0.0 && fps <= limits::kFps))
@@ -205,6 +226,9 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
                       plan.directories);
     if (fs::is_directory(plan.output))
       throw UserError(fmt::format("{} {}: is a directory", request.output_flag, plan.output));
+  } else if (plan.still) {  // its directory made, as a video's
+    prepare_directory(fs::path(plan.output).parent_path(), request.output_flag + " " + plan.output,
+                      plan.directories);
   } else {
     prepare_directory(fs::path(plan.output), request.output_flag + " " + plan.output,
                       plan.directories);
@@ -290,6 +314,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
     const Clock::time_point drawn = Clock::now();
     if (video) {
       video->write(image);
+    } else if (plan.still) {
+      render::write_png(plan.output, image);
     } else {
       render::write_png((fs::path(plan.output) / fmt::format("frame_{:05d}.png", t)).string(),
                         image);
@@ -328,7 +354,7 @@ int render_command(const std::string& h5_path, const RenderRequest& request) {
     } catch (const UserError&) {  // a scene this version cannot read: defaults, no pole
     }
     std::tie(first, last) =
-        resolve_frame_range(request.frames ? parse_frame_range(*request.frames) : std::pair{0, -1},
+        resolve_frame_range(request.frames ? parse_frame_range(*request.frames) : kAllFrames,
                             reader.frame_count(), h5_path);
   }
   // Every file the render will write, checked against the inputs before anything is made.

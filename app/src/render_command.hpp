@@ -1,6 +1,7 @@
 #pragma once
 // `flag-sim render` and `run --render`: the frames of an output file drawn to
 // numbered PNGs in a directory or to an MP4.
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -48,8 +49,11 @@ struct RenderPlan {
   std::optional<render::Container> container;  ///< the video's; nullopt: PNG frames
   double fps = 30.0;                           ///< of the video: the frames' own rate
   render::View view = render::View::kThreeQuarter;
-  /// Frames first .. last - 1 are drawn (last -1: to the end), numbered as in the file.
-  int first_frame = 0, last_frame = -1;
+  /// Frames first .. last - 1 are drawn, numbered as in the file (parse_frame_range: negative
+  /// from the end, last kToEnd: to the end).
+  int first_frame = 0, last_frame = std::numeric_limits<int>::max();
+  /// -o NAME.png: the one frame of the range drawn to that file (a still).
+  bool still = false;
   ColorBy color = ColorBy::kNone;
   /// --eye / --target: an explicit camera (target: the run's centre when not given).
   std::optional<Vec3> eye_m, target_m;

@@ -100,7 +100,7 @@ with tempfile.TemporaryDirectory() as tmp:
                         (["-o", "run.pc2", "--frames", "9:"], "has frames 0 to 4"),
                         (["-o", "new/dir/run.pc2", "--frames", "3:2"], "the range is empty"),
                         (["-o", "run.xdmf"], "expected NAME.pc2"),
-                        (["-o", "copy.pc2", "--frames", "x"], "expected A:B")):
+                        (["-o", "copy.pc2", "--frames", "x"], "expected N (one frame; -1 the last) or A:B")):
         before = sorted(os.listdir(tmp))
         r = flag_sim_run(["export", "run.h5", *args], tmp)
         check(r.returncode == 2, f"export {args}: exit {r.returncode}")

@@ -134,6 +134,38 @@ TEST(Render, AnUnknownVideoExtensionIsRefused) {
   EXPECT_TRUE(fs::exists(dir.file("frames.v2/frame_00003.png")));
 }
 
+// -o NAME.png with one frame (--frames N, -1 the last) is that frame, as the
+// same frame drawn into a directory; a range of several is refused up front.
+TEST(Render, ANamedStillIsOneFrame) {
+  TempDir dir;
+  ASSERT_EQ(run_flag_sim(kSmallRun, dir.path()).exit_code, 0);
+  ASSERT_EQ(
+      run_flag_sim({"render", "r.h5", "-o", "all/", "--size", "160x90"}, dir.path()).exit_code, 0);
+  const ProcessResult still = run_flag_sim(
+      {"render", "r.h5", "-o", "stills/hero.png", "--frames", "-1", "--size", "160x90"},
+      dir.path());
+  ASSERT_EQ(still.exit_code, 0) << still.err;
+  EXPECT_NE(still.out.find("rendered 1 frame "), std::string::npos) << still.out;
+  EXPECT_EQ(bytes(dir.file("stills/hero.png")), bytes(dir.file("all/frame_00003.png")));
+  ASSERT_EQ(run_flag_sim({"render", "r.h5", "-o", "two.PNG", "--frames", "2", "--size", "160x90"},
+                         dir.path())
+                .exit_code,
+            0);
+  EXPECT_EQ(bytes(dir.file("two.PNG")), bytes(dir.file("all/frame_00002.png")));
+  const ProcessResult several =
+      run_flag_sim({"render", "r.h5", "-o", "many.png", "--frames", "1:3"}, dir.path());
+  EXPECT_EQ(several.exit_code, 2);
+  EXPECT_NE(several.err.find("-o many.png: a PNG file holds one frame, and frames 1 to 2 are 2"),
+            std::string::npos)
+      << several.err;
+  EXPECT_FALSE(fs::exists(dir.file("many.png")));
+  const ProcessResult run_render = run_flag_sim({"run", "--set", "flag.fine=[17,25]", "--frames",
+                                                 "4", "--quiet", "-o", "s.h5", "--render", "s.png"},
+                                                dir.path());
+  EXPECT_EQ(run_render.exit_code, 2);  // before the run: four frames are no still
+  EXPECT_FALSE(fs::exists(dir.file("s.h5")));
+}
+
 // --frames A:B draws frames A .. B - 1 under their own numbers; --camera
 // picks the view (a side view is another image of the same frame); ranges
 // outside the file and unknown views are exit 2 and leave nothing.
@@ -170,7 +202,7 @@ TEST(Render, AFrameRangeAndACameraView) {
   for (const auto& [args, words] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--frames", "2:9"}, "--frames 2:9: r.h5 has frames 0 to 3"},
            {{"--frames", "3:1"}, "the range is empty"},
-           {{"--frames", "a:b"}, "expected A:B"},
+           {{"--frames", "a:b"}, "expected N (one frame; -1 the last) or A:B"},
            {{"--camera", "top"}, "--camera top: expected one of"},
            {{"--eye", "1,2"}, "--eye 1,2: expected X,Y,Z in metres"},
            {{"--eye", "1,2,3,4"}, "--eye 1,2,3,4: expected X,Y,Z"},
