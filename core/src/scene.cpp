@@ -1,7 +1,13 @@
 #include "flagsim/core/scene.hpp"
 
+#include <fmt/format.h>
+
 #include <cassert>
 #include <cmath>
+#include <string>
+
+#include "flagsim/core/errors.hpp"
+#include "flagsim/core/limits.hpp"
 
 namespace flagsim {
 
@@ -97,6 +103,60 @@ Scene on_coarse_lattice(const Scene& scene) {
   coarse.flag.fine_cols = (*scene.flag.coarse)[1];
   coarse.flag.coarse.reset();
   return coarse;
+}
+
+void check_scene(const Scene& scene) {
+  const auto fail = [](const char* key, const std::string& what) {
+    throw UserError(fmt::format("scene: {}: {}", key, what));
+  };
+  const auto positive = [&](const char* key, double value, const char* unit) {
+    if (!(value > 0.0 && std::isfinite(value)))
+      fail(key, fmt::format("{} {}: expected a positive finite number", value, unit));
+  };
+  const FlagSpec& flag = scene.flag;
+  const auto side = [&](const char* key, int n) {
+    if (n < 2 || n > limits::kLatticeSide)
+      fail(key, fmt::format("{} nodes a side: expected 2 to {}", n, limits::kLatticeSide));
+  };
+  side("flag.fine (rows)", flag.fine_rows);
+  side("flag.fine (columns)", flag.fine_cols);
+  if (double(flag.fine_rows) * flag.fine_cols > double(limits::kLatticeNodes))
+    fail("flag.fine", fmt::format("{} x {} nodes: more than the {} allowed", flag.fine_rows,
+                                  flag.fine_cols, limits::kLatticeNodes));
+  if (flag.coarse) {
+    const auto [rows, cols] = *flag.coarse;
+    if (rows < 2 || cols < 2 || rows > flag.fine_rows || cols > flag.fine_cols ||
+        (flag.fine_rows - 1) % (rows - 1) != 0 || (flag.fine_cols - 1) % (cols - 1) != 0)
+      fail("flag.coarse", fmt::format("[{}, {}] does not divide flag.fine = [{}, {}] (each side's "
+                                      "links a multiple of the coarse side's)",
+                                      rows, cols, flag.fine_rows, flag.fine_cols));
+  }
+  if (scene.mode == Mode::kHybrid && !flag.coarse)
+    fail("flag.coarse", "hybrid mode needs the lattice the physics runs on");
+  if (scene.mode == Mode::kInfill && scene.keyframes.empty())
+    fail("keyframe", "infill mode needs keyframes with the corner positions");
+  positive("flag.size (width)", flag.width_m, "m");
+  positive("flag.size (height)", flag.height_m, "m");
+  positive("flag.areal_density", flag.areal_density_kg_m2, "kg/m^2");
+  positive("flag.stretch_modulus", flag.stretch_modulus_n_m, "N/m");
+  positive("scene.fps", scene.fps, "1/s");
+  positive("scene.duration", scene.duration_s, "s");
+  if (scene.fps > limits::kFps)
+    fail("scene.fps", fmt::format("{}: at most {}", scene.fps, limits::kFps));
+  const auto non_negative = [&](const char* key, double value, const char* unit) {
+    if (!(value >= 0.0 && std::isfinite(value)))
+      fail(key, fmt::format("{} {}: expected 0 or a positive finite number", value, unit));
+  };
+  non_negative("flag.shear_modulus", flag.shear_modulus_n_m, "N/m");
+  non_negative("flag.damping", flag.damping_per_s, "1/s");
+  if (!flag.origin_m.allFinite()) fail("flag.origin", "expected finite coordinates (m)");
+  if (scene.solver.substeps < 1)
+    fail("solver.substeps", fmt::format("{}: expected 1 or more", scene.solver.substeps));
+  if (scene.output.every < 1)
+    fail("output.every", fmt::format("{}: expected 1 or more", scene.output.every));
+  if (scene.simulated_frames() > limits::kFrames)
+    fail("scene.duration", fmt::format("{} frames: more than the {} allowed",
+                                       scene.simulated_frames(), limits::kFrames));
 }
 
 }  // namespace flagsim

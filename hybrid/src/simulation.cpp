@@ -229,7 +229,7 @@ class InfillSimulation final : public Simulation {
     dense_.fill(corners, times);
   }
 
-  const Scene& scene_;
+  Scene scene_;  ///< a copy: the caller's Scene may go before the simulation does
   DenseInfill dense_;
   int frame_ = 0;
 };
@@ -397,12 +397,14 @@ std::optional<std::string> wrinkle_resolution_note(const Scene& scene) {
 }
 
 std::unique_ptr<Simulation> make_simulation(const Scene& scene) {
+  check_scene(scene);  // a Scene built in code is checked as a file's is
   if (scene.mode == Mode::kInfill) return std::make_unique<InfillSimulation>(scene);
   if (scene.mode == Mode::kHybrid) return std::make_unique<HybridSimulation>(scene);
   return std::make_unique<FullLatticeSimulation>(scene);
 }
 
 std::unique_ptr<Simulation> make_replay(const Scene& scene, CoarseFrames coarse) {
+  check_scene(scene);
   if (scene.mode != Mode::kHybrid)
     throw UserError(
         fmt::format("a coarse trajectory is replayed by the hybrid; this scene's mode "

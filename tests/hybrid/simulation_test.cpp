@@ -176,5 +176,37 @@ TEST(SimulationState, AStateTakenGoesOnAsTheSimulationItWasTakenFrom) {
   }
 }
 
+TEST(SimulationState, ASceneBuiltInCodeIsCheckedAndMayGoBeforeItsSimulation) {
+  // A Scene is a plain struct: one built (or changed) in code is checked as a
+  // file's is, and the simulation keeps what it needs of it (the infill mode
+  // once held a reference to it: a use after scope when the Scene was a temporary).
+  Scene bad = default_at_33x49();
+  bad.flag.fine_cols = 50;
+  try {
+    make_simulation(bad);
+    ADD_FAILURE() << "a coarse lattice that does not divide the fine one was run";
+  } catch (const UserError& e) {
+    EXPECT_STREQ(e.what(),
+                 "scene: flag.coarse: [9, 13] does not divide flag.fine = [33, 50] (each side's "
+                 "links a multiple of the coarse side's)");
+  }
+  Scene slack = default_at_33x49();
+  slack.flag.areal_density_kg_m2 = 0.0;
+  EXPECT_THROW(make_simulation(slack), UserError);
+  std::unique_ptr<Simulation> keyframed;
+  {
+    const Scene scene = parse_scene(
+        "[scene]\nmode = \"infill\"\nduration = 1.0\n[flag]\nfine = [9, 13]\n"
+        "[[keyframe]]\ntime = 0.0\ncorners = [[0, 2, 0], [1.5, 2, 0], [0, 1, 0], [1.5, 1, 0]]\n"
+        "[[keyframe]]\ntime = 1.0\ncorners = [[0, 2, 0], [1.2, 2, 0.3], [0, 1, 0], [1.2, 1, "
+        "0.3]]\n",
+        "<test>");
+    keyframed = make_simulation(scene);
+  }  // the Scene is gone; the simulation steps on
+  for (int f = 0; f < 3; ++f) keyframed->advance_frame(nullptr);
+  EXPECT_TRUE(std::all_of(keyframed->positions().begin(), keyframed->positions().end(),
+                          [](const Vec3& x) { return x.allFinite(); }));
+}
+
 }  // namespace
 }  // namespace flagsim::hybrid

@@ -242,6 +242,14 @@ const char* to_string(Backend backend);
 const char* to_string(LinearSolver linear);
 const char* to_string(RenderStyle style);
 
+/// Throws UserError, naming the key, when a Scene cannot be run: a lattice side
+/// under 2 or a coarse lattice that does not divide the fine one, a hybrid
+/// without flag.coarse, an infill mode without keyframes, a size, time or
+/// material constant that is not a positive finite number. The parser checks
+/// all this and more; this is the check for a Scene built in code (library
+/// users), which make_simulation runs on every scene.
+void check_scene(const Scene& scene);
+
 /// The physics backend the scene runs: the one its full-lattice mode names
 /// ("mass-spring" runs spring-damper), solver.backend in hybrid mode, none in
 /// infill mode (no physics).
