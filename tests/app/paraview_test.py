@@ -2,7 +2,8 @@
 """ParaView opens flag-sim's XDMF sidecar with its default reader (issue 15):
 every time step with all its points, the last step's points equal to the HDF5
 file's, and the per-node fields `velocity` and `strain` as point arrays, from
-another working directory, by relative and by absolute path. Runs the real
+another working directory, by relative and by absolute path; and a screenshot
+from a headless pvpython under xvfb-run, as README says to take one. Runs the real
 pvpython (Debian's python3-paraview, installed by scripts/setup.sh
 --test-deps); without it the test is skipped (exit 77), saying why.
 
@@ -79,6 +80,22 @@ with tempfile.TemporaryDirectory() as tmp:
             if name in seen["arrays"]:
                 got = np.array(seen["arrays"][name], dtype=np.float32).reshape(last[name].shape)
                 check(np.array_equal(got, last[name]), f"{what}: point array {name} differs")
+    # A picture from a headless pvpython: Debian's ParaView draws through X, so
+    # SaveScreenshot needs a display (without one it dies in XSync, also with
+    # --force-offscreen-rendering); README says to run it under xvfb-run.
+    xvfb_run = shutil.which("xvfb-run")
+    check(xvfb_run is not None, "xvfb-run not found (scripts/setup.sh --test-deps installs xvfb)")
+    if xvfb_run:
+        shot = os.path.join(tmp, "shot.png")
+        script = os.path.join(tmp, "shot.py")
+        with open(script, "w") as f:
+            f.write("from paraview.simple import *\n"
+                    f"Show(OpenDataFile({os.path.join(results, 'flag.xdmf')!r}))\n"
+                    f"Render()\nSaveScreenshot({shot!r}, ImageResolution=[320, 180])\n")
+        r = subprocess.run([xvfb_run, "-a", pvpython, script], capture_output=True, text=True,
+                           timeout=300)
+        check(r.returncode == 0 and os.path.getsize(shot) > 1000 if os.path.exists(shot) else False,
+              f"xvfb-run pvpython SaveScreenshot: exit {r.returncode}\n{r.stderr[-2000:]}")
 
 for failure in failures:
     print("FAIL:", failure)
