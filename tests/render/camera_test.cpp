@@ -54,8 +54,9 @@ TEST(Camera, EveryViewSeesTheWholeBoundsFromItsSide) {
         EXPECT_LE(std::abs(q.y), 1.0) << int(view) << " " << aspect << " corner " << corner;
         widest = std::max({widest, std::abs(q.x), std::abs(q.y)});
       }
-      // Framed, not lost in the distance: the bounds reach past a third of the picture.
-      EXPECT_GT(widest, 0.33) << int(view) << " " << aspect;
+      // Framed tight: the limiting corner at 90% of the half field of view (framing the
+      // bounding sphere left the side view's profile a tenth of the picture wide).
+      EXPECT_NEAR(widest, 0.9, 1e-9) << int(view) << " " << aspect;
       const Vec3 from = (camera.eye_m - centre).normalized();
       if (view == View::kFront) {
         EXPECT_GT(from.z(), 0.999);

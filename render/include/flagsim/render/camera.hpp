@@ -46,8 +46,8 @@ inline std::optional<View> parse_view(std::string_view name) {
 }
 
 /// A camera that sees all of `bounds` in an image of the given aspect
-/// (width / height) from `view`, looking at the centre of the bounds, the
-/// bounding sphere filling about 90% of the smaller field of view.
+/// (width / height) from `view`, looking at the centre of the bounds, as close
+/// as keeps every corner of the bounds within 90% of both fields of view.
 Camera frame_bounds(const Bounds& bounds, double aspect, View view = View::kThreeQuarter);
 
 }  // namespace flagsim::render
