@@ -178,6 +178,8 @@ int run_main(int argc, char** argv) {
                          "What the --eye camera looks at, X,Y,Z in m (default: the run's centre)");
   render_cmd->add_option("--color", render.color,
                          "Colour the shaded cloth by strain or speed (one scale for all frames)");
+  render_cmd->add_option("--antialias", render.antialias,
+                         "Samples along each side of a pixel, averaged: 1 (none) to 4 (default 2)");
   render_cmd->add_flag("-q,--quiet", render.quiet, "No progress line, only the summary");
 
   std::string export_input;

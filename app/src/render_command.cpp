@@ -190,6 +190,13 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
   }
   if (request.frames)
     std::tie(plan.first_frame, plan.last_frame) = parse_frame_range(*request.frames);
+  if (request.antialias) {
+    if (*request.antialias < 1 || *request.antialias > 4)
+      throw UserError(
+          fmt::format("--antialias {}: expected 1 (none) to 4 samples along each side of a pixel",
+                      *request.antialias));
+    plan.samples = *request.antialias;
+  }
   if (request.eye) plan.eye_m = parse_point("--eye", *request.eye);
   if (request.target) plan.target_m = parse_point("--target", *request.target);
   if (request.target && !request.eye)
@@ -290,7 +297,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
                   : fmt::format(", coloured by speed 0 .. {:.3g} m/s", high);
   }
 
-  const auto context = render::make_osmesa_context(plan.width, plan.height);
+  const auto context = render::make_osmesa_context(plan.width, plan.height, plan.samples);
   render::FrameRenderer renderer(*context, options);
   std::optional<render::VideoWriter> video;
   if (plan.container)

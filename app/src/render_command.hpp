@@ -30,6 +30,7 @@ struct RenderRequest {
   std::optional<std::string> color;    ///< --color strain|speed
   std::optional<std::string> eye;      ///< --eye X,Y,Z (m): an explicit camera position
   std::optional<std::string> target;   ///< --target X,Y,Z (m): what it looks at
+  std::optional<int> antialias;        ///< --antialias N: N x N samples a pixel (1: none)
   bool quiet = false;                  ///< --quiet: no progress line
 };
 
@@ -54,6 +55,8 @@ struct RenderPlan {
   int first_frame = 0, last_frame = std::numeric_limits<int>::max();
   /// -o NAME.png: the one frame of the range drawn to that file (a still).
   bool still = false;
+  /// Drawn pixels per image pixel along each side, averaged (supersampling; 1: none).
+  int samples = 2;
   ColorBy color = ColorBy::kNone;
   /// --eye / --target: an explicit camera (target: the run's centre when not given).
   std::optional<Vec3> eye_m, target_m;

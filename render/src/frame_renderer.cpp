@@ -87,6 +87,8 @@ Image FrameRenderer::render(const FrameView& frame) {
   context_.make_current();
   const int w = context_.width(), h = context_.height();
   glViewport(0, 0, w, h);
+  // Lines as wide in the image as without supersampling: one image pixel.
+  glLineWidth(float(context_.samples()));
   glClearColor(kSky[0], kSky[1], kSky[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
@@ -171,8 +173,9 @@ int FrameRenderer::wire_step(const FrameView& frame) const {
   const Vec3 f = (camera.target_m - camera.eye_m).normalized();
   const Vec3 s = f.cross(camera.up).normalized();
   const Vec3 u = s.cross(f);
-  const double focal =
-      0.5 * context_.height() / std::tan(0.5 * camera.vertical_fov_deg * std::numbers::pi / 180);
+  const double focal = 0.5 * context_.height() /
+                       context_.samples() /  // image pixels, not drawn ones
+                       std::tan(0.5 * camera.vertical_fov_deg * std::numbers::pi / 180);
   auto screen = [&](const Vec3& p) {
     const Vec3 d = p - camera.eye_m;
     const double depth = std::max(d.dot(f), 1e-6);

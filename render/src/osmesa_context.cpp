@@ -30,9 +30,15 @@ void check_room(int width, int height) {
 
 class OsMesaContext final : public OffscreenContext {
  public:
-  OsMesaContext(int width, int height) : width_(width), height_(height) {
-    check_room(width, height);
-    buffer_.resize(std::size_t(width) * std::size_t(height) * 4);
+  /// Draws `samples` x `samples` pixels for each of the image's `width` x `height`.
+  OsMesaContext(int width, int height, int samples = 1)
+      : out_width_(width),
+        out_height_(height),
+        samples_(samples),
+        width_(width * samples),
+        height_(height * samples) {
+    check_room(width_, height_);
+    buffer_.resize(std::size_t(width_) * std::size_t(height_) * 4);
     context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
     if (!context_) throw UserError("OSMesa could not create a rendering context");
   }
@@ -47,6 +53,7 @@ class OsMesaContext final : public OffscreenContext {
 
   int width() const override { return width_; }
   int height() const override { return height_; }
+  int samples() const override { return samples_; }
   void make_current() override {
     if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width_, height_))
       throw UserError(fmt::format("OSMesa could not draw a {} x {} image", width_, height_));
@@ -54,15 +61,28 @@ class OsMesaContext final : public OffscreenContext {
   }
   Image read_rgb() override {
     glFinish();
-    Image image(width_, height_);
-    const std::size_t n = std::size_t(width_) * std::size_t(height_);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c)
-        image.rgb[i * 3 + std::size_t(c)] = buffer_[i * 4 + std::size_t(c)];
+    // Each image pixel the mean of its samples x samples drawn ones (a box
+    // filter: supersampling, the edges anti-aliased), rounded to nearest.
+    Image image(out_width_, out_height_);
+    const int count = samples_ * samples_;
+    for (int y = 0; y < out_height_; ++y)
+      for (int x = 0; x < out_width_; ++x)
+        for (int c = 0; c < 3; ++c) {
+          int sum = 0;
+          for (int sy = 0; sy < samples_; ++sy)
+            for (int sx = 0; sx < samples_; ++sx)
+              sum += buffer_[(std::size_t(y * samples_ + sy) * std::size_t(width_) +
+                              std::size_t(x * samples_ + sx)) *
+                                 4 +
+                             std::size_t(c)];
+          image.rgb[(std::size_t(y) * std::size_t(out_width_) + std::size_t(x)) * 3 +
+                    std::size_t(c)] = static_cast<unsigned char>((sum + count / 2) / count);
+        }
     return image;
   }
 
  private:
+  int out_width_, out_height_, samples_;
   int width_, height_;
   std::vector<unsigned char> buffer_;
   OSMesaContext context_ = nullptr;
@@ -70,8 +90,8 @@ class OsMesaContext final : public OffscreenContext {
 
 }  // namespace
 
-std::unique_ptr<OffscreenContext> make_osmesa_context(int width, int height) {
-  return std::make_unique<OsMesaContext>(width, height);
+std::unique_ptr<OffscreenContext> make_osmesa_context(int width, int height, int samples) {
+  return std::make_unique<OsMesaContext>(width, height, samples);
 }
 
 std::string osmesa_gl_version() {

@@ -208,7 +208,8 @@ TEST(Render, AFrameRangeAndACameraView) {
            {{"--eye", "1,2,3,4"}, "--eye 1,2,3,4: expected X,Y,Z"},
            {{"--eye", "1,2,2e5"}, "each coordinate within"},
            {{"--target", "1,2,3"}, "--target 1,2,3: goes with --eye"},
-           {{"--eye", "1,2,3", "--camera", "side"}, "give --eye or --camera side, not both"}}) {
+           {{"--eye", "1,2,3", "--camera", "side"}, "give --eye or --camera side, not both"},
+           {{"--antialias", "5"}, "--antialias 5: expected 1 (none) to 4 samples"}}) {
     std::vector<std::string> command = {"r.h5"};
     command.insert(command.end(), args.begin(), args.end());
     expect_render_refused(dir, command, words);

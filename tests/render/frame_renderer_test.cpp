@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -31,8 +32,8 @@ Camera straight_on(double z = 4.0) {
   return camera;
 }
 
-Image draw(Style style, const Camera& camera, Image texture = {}) {
-  const auto context = make_osmesa_context(kWidth, kHeight);
+Image draw(Style style, const Camera& camera, Image texture = {}, int samples = 1) {
+  const auto context = make_osmesa_context(kWidth, kHeight, samples);
   RenderOptions options;
   options.style = style;
   options.camera = camera;
@@ -66,6 +67,32 @@ double fraction_inside(const Image& image, double margin, Test&& test) {
       hits += test(image.pixel(x, y)) ? 1 : 0;
     }
   return double(hits) / total;
+}
+
+TEST(FrameRenderer, SupersamplingBlendsTheEdgesAndKeepsTheRest) {
+  // 2 x 2 samples a pixel, averaged: the same picture at the same size, with
+  // pixels on the flag's slanted edges part cloth, part background (redder
+  // than the sky or ground, less red than the cloth), which one sample a
+  // pixel does not make.
+  Camera slanted = straight_on();
+  slanted.eye_m = Vec3(3.0, 2.6, 3.2);
+  const auto partly_red = [](const Image& image) {
+    int count = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const std::uint8_t* p = image.pixel(x, y);
+        const int redness = int(p[0]) - std::max(int(p[1]), int(p[2]));
+        count += redness > 15 && redness < 45 ? 1 : 0;
+      }
+    return count;
+  };
+  const Image one = draw(Style::kShaded, slanted, {}, 1);
+  const Image two = draw(Style::kShaded, slanted, {}, 2);
+  ASSERT_EQ(two.width, kWidth);
+  ASSERT_EQ(two.height, kHeight);
+  EXPECT_EQ(fraction_inside(draw(Style::kShaded, straight_on(), {}, 2), 3.0, is_cloth_red), 1.0);
+  EXPECT_EQ(partly_red(one), 0);    // measured 0
+  EXPECT_GT(partly_red(two), 120);  // measured 177 (the edges are about 250 pixels long)
 }
 
 TEST(FrameRenderer, AFlatFlagFacingTheCameraCoversTheExpectedRegion) {
