@@ -20,6 +20,7 @@
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/data/output_reader.hpp"
 #include "flagsim/render/camera.hpp"
+#include "flagsim/render/color_bar.hpp"
 #include "flagsim/render/offscreen_context.hpp"
 #include "flagsim/render/png_io.hpp"
 #include "flagsim/render/video_writer.hpp"
@@ -280,6 +281,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   };
   const char* field_name = plan.color == ColorBy::kStrain ? "strain" : "velocity";
   std::string colored;
+  std::optional<std::pair<std::string, std::string>> legend;  // --color: top and bottom labels
   if (plan.color != ColorBy::kNone) {
     double high = 0.0;
     for (int t = first; t < last; ++t) {
@@ -295,6 +297,10 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
     colored = plan.color == ColorBy::kStrain
                   ? fmt::format(", coloured by strain 0 .. {:.3g}%", 100.0 * high)
                   : fmt::format(", coloured by speed 0 .. {:.3g} m/s", high);
+    // The legend drawn into every frame: the scale's top and bottom.
+    legend = plan.color == ColorBy::kStrain
+                 ? std::pair{fmt::format("{:.3g}%", 100.0 * high), std::string("0%")}
+                 : std::pair{fmt::format("{:.3g} m/s", high), std::string("0 m/s")};
   }
 
   const auto context = render::make_osmesa_context(plan.width, plan.height, plan.samples);
@@ -317,7 +323,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
     render::FrameView view{rows, cols, positions, std::nullopt, field};
     if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
     const Clock::time_point start = Clock::now();
-    const render::Image image = renderer.render(view);
+    render::Image image = renderer.render(view);
+    if (legend) render::draw_color_bar(image, legend->first, legend->second);
     const Clock::time_point drawn = Clock::now();
     if (video) {
       video->write(image);
