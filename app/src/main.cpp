@@ -16,6 +16,7 @@
 #include <optional>
 #include <regex>
 #include <string_view>
+#include <vector>
 
 #include "compare_command.hpp"
 #include "export_command.hpp"
@@ -40,6 +41,32 @@ using flagsim::ExitCode;
 int fail(ExitCode code, const std::string& message) {
   fmt::print(stderr, "error: {}\n", flagsim::one_line(message));
   return int(code);
+}
+
+// "; did you mean --frames?" for the first --option of argv that its command
+// (argv[1]) does not have, when one of the command's options is a plausible
+// typo of it; "" otherwise.
+std::string option_hint(const CLI::App& cli, int argc, char** argv) {
+  if (argc < 3) return {};
+  const CLI::App* command = nullptr;
+  for (const CLI::App* sub : cli.get_subcommands([](const CLI::App*) { return true; }))
+    if (sub->get_name() == argv[1]) command = sub;
+  if (!command) return {};
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command->get_options())
+    for (const std::string& name : option->get_lnames()) names.push_back(name);
+  const std::vector<std::string_view> candidates(names.begin(), names.end());
+  for (int i = 2; i < argc; ++i) {
+    std::string_view typed = argv[i];
+    if (typed == "--") break;
+    if (!typed.starts_with("--")) continue;
+    typed = typed.substr(2, typed.find('=') == std::string_view::npos ? std::string_view::npos
+                                                                      : typed.find('=') - 2);
+    if (std::find(names.begin(), names.end(), typed) != names.end()) continue;
+    const std::string guess = flagsim::detail::closest_name(typed, candidates);
+    return guess.empty() ? std::string() : fmt::format("; did you mean --{}?", guess);
+  }
+  return {};
 }
 
 // Integer options in plain decimal: CLI11 would read "0x10" as 16 and "0b1" as 1.
@@ -309,7 +336,13 @@ int run_main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    return fail(ExitCode::kBadInput, fmt::format("{} (see flag-sim --help)", e.what()));
+    const bool known = argc > 1 && !cli.get_subcommands([&](const CLI::App* sub) {
+                                         return sub->get_name() == argv[1];
+                                       })
+                                        .empty();
+    return fail(ExitCode::kBadInput,
+                fmt::format("{}{} (see flag-sim {})", e.what(), option_hint(cli, argc, argv),
+                            known ? fmt::format("help {}", argv[1]) : std::string("--help")));
   }
 
   try {
