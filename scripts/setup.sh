@@ -33,8 +33,9 @@ if ((test_deps)); then
   # tests/app/export_test.py: meshio reads the exported OBJ;
   # tests/app/slurm_test.py: a one-node Slurm (no daemon starts by itself)
   packages+=(paraview python3-paraview python3-meshio slurmctld slurmd slurm-client munge)
-  # tests/app/paraview_test.py: pvpython's SaveScreenshot needs an X display
-  packages+=(xvfb)
+  # tests/app/paraview_test.py: pvpython's SaveScreenshot needs an X display;
+  # README's xvfb-run needs xauth (only a Recommends of xvfb)
+  packages+=(xvfb xauth)
   # scripts/check_format.sh, scripts/check_tidy.sh
   packages+=(clang-format clang-tidy)
 fi
