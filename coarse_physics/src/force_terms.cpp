@@ -22,7 +22,11 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
     // Speed bound for the stability estimate: the pole's speed plus the wind
     // speed again for a flapping fly end (it can move about as fast as the wind).
     const double cloth_speed = pins.max_speed_m_s() + scene.wind->velocity_m_s.norm();
-    terms.push_back(std::make_unique<AeroForce>(model, *scene.wind, scene.seed,
+    // With the vortex lattice (vortex_wake.hpp, the spring-damper solver's own)
+    // the lift is the vortex lattice's; drag and friction stay here.
+    Wind wind = *scene.wind;
+    if (wind.model == AirModel::kVortex) wind.lift = 0.0;
+    terms.push_back(std::make_unique<AeroForce>(model, wind, scene.seed,
                                                 scene.flag.areal_density_kg_m2, cloth_speed));
   }
   return terms;

@@ -14,25 +14,35 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene)
       initial_(physics::initial_state(scene, model_)) {
   rest_m_ = model_.lattice.rest_positions();
   inverse_mass_.resize(model_.mass_kg.size());
-  for (std::size_t i = 0; i < inverse_mass_.size(); ++i) inverse_mass_[i] = 1.0 / model_.mass_kg[i];
+  for (std::size_t i = 0; i < inverse_mass_.size(); ++i)
+    inverse_mass_[i] = model_.pinned[i] ? 0.0 : 1.0 / model_.mass_kg[i];
   forces_n_.assign(model_.lattice.node_count(), Vec3::Zero());
 
   // The pipeline of force terms: only what the scene calls for is constructed.
   terms_ = make_force_terms(scene, model_, pins_);
   effects_ = physics_effects(scene, model_);
 
+  if (scene.wind && scene.wind->model == AirModel::kVortex) {
+    vortex_ = std::make_unique<VortexWake>(model_, *scene.wind, scene.seed, inverse_mass_);
+    effects_.insert(std::find(effects_.begin(), effects_.end(), "wind") + 1, "vortex");
+  }
+
   frame_s_ = 1.0 / scene.fps;
   stable_substep_s_ = explicit_stability_limit(model_, terms_);
+  if (vortex_)
+    stable_substep_s_ = std::min(stable_substep_s_, 1.0 / vortex_->velocity_rate_bound());
   substeps_per_frame_ =
       physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
 }
 
 void SpringDamperSolver::register_stages(StageTimes& times) {
   term_stage_ = register_term_stages(terms_, times);
+  if (vortex_) vortex_stage_ = times.add("vortex");
   update_stage_ = times.add("integrate");
 }
 
 void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
+  if (vortex_) vortex_->begin_frame(state.time_s, state.x_m);
   advance_substeps(terms_, state, substeps_per_frame_, substep_s(), [&](double dt) {
     step(state, dt, times);
     return true;
@@ -44,6 +54,17 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
   for (std::size_t t = 0; t < terms_.size(); ++t) {
     const int stage = term_stage_.empty() ? -1 : term_stage_[t];
     run_timed(times, stage, [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
+  }
+  if (vortex_) {
+    run_timed(times, vortex_stage_, [&] {
+      vortex_->advance_to(state.time_s);
+      vortex_->add_forces(state.time_s, state.x_m, state.v_m_s, forces_n_);
+      // The accelerations f / m, then with the air's inertia (Woodbury).
+      for (std::size_t i = 0; i < forces_n_.size(); ++i) forces_n_[i] *= inverse_mass_[i];
+      vortex_->add_air_inertia(forces_n_);
+      for (std::size_t i = 0; i < forces_n_.size(); ++i)
+        if (!model_.pinned[i]) forces_n_[i] *= model_.mass_kg[i];
+    });
   }
   auto update = [&] {
     const double next_time = state.time_s + dt_s;

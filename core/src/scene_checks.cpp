@@ -134,6 +134,25 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
                                    "\"implicit\" or scene.mode = \"implicit\"",
                                    to_string(*backend), lacks, key));
   }
+  // The vortex lattice's added mass is solved with the spring-damper
+  // integrator's masses (vortex_wake.hpp); the other steppers would take it
+  // explicitly, which is unstable.
+  if (scene.wind && scene.wind->model == AirModel::kVortex) {
+    if (const std::optional<Backend> backend = backend_of(scene);
+        !backend || *backend != Backend::kSpringDamper)
+      fail_at(root, "wind.model",
+              fmt::format("\"vortex\" needs the spring-damper integrator (scene.mode = "
+                          "\"hybrid\" or \"mass-spring\", solver.backend = \"spring-damper\"); "
+                          "{} mode{} solves without the air's added mass",
+                          to_string(scene.mode),
+                          backend && scene.mode == Mode::kHybrid
+                              ? fmt::format(" with the {} backend", to_string(*backend))
+                              : std::string()));
+    if (!(scene.wind->velocity_m_s.x() > 0.0))
+      fail_at(root, "wind.velocity",
+              "wind.model = \"vortex\" needs a wind along the flag, from the pole to the fly "
+              "end (a positive x component)");
+  }
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
                                       to_string(scene.mode), fmt::join(unused, ", ")));

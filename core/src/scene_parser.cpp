@@ -53,6 +53,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "wind.lift",
                                          "wind.friction",
                                          "wind.panel",
+                                         "wind.model",
                                          "wind.air_density",
                                          "wind.gusts",
                                          "wind.turbulence",
@@ -253,6 +254,7 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     wind.lift = in.real("lift", wind.lift, Bound::between(0.0, 100.0), "");
     wind.friction = in.real("friction", wind.friction, Bound::between(0.0, 10.0), "");
     wind.panel_m = in.real("panel", wind.panel_m, Bound{1.0e-3, 1.0e3, false}, "m");
+    wind.model = in.choice_of("model", wind.model, kAirModelNames);
     wind.air_density_kg_m3 =
         in.real("air_density", wind.air_density_kg_m3, Bound{0.0, 100.0, true}, "kg/m^3");
     if (const toml::table* g = in.subtable("gusts")) {

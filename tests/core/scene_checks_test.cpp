@@ -95,5 +95,25 @@ TEST(SceneChecks, AHybridWithoutACoarseLatticeAndAPoleWithoutPinsAreRefused) {
   EXPECT_NE(pole.find("pole: a moving pole needs pinned nodes"), std::string::npos) << pole;
 }
 
+TEST(SceneChecks, TheVortexAirNeedsTheSpringDamperIntegratorAndAWindAlongTheFlag) {
+  const std::string wind =
+      std::string(kHybrid) + "[wind]\nvelocity = [10.0, 0.0, 0.0]\nmodel = \"vortex\"\n";
+  EXPECT_EQ(parse_scene(wind, "s.toml").wind->model, AirModel::kVortex);
+  const std::string xpbd = error_of(wind, {"scene.mode=\"xpbd\""});
+  EXPECT_TRUE(xpbd.starts_with("s.toml:9:")) << xpbd;
+  EXPECT_NE(xpbd.find("wind.model: \"vortex\" needs the spring-damper integrator"),
+            std::string::npos)
+      << xpbd;
+  EXPECT_NE(xpbd.find("xpbd mode solves without the air's added mass"), std::string::npos) << xpbd;
+  const std::string bullet = error_of(wind, {"solver.backend=\"bullet\""});
+  EXPECT_NE(bullet.find("hybrid mode with the bullet backend"), std::string::npos) << bullet;
+  const std::string across = error_of(wind, {"wind.velocity=[0.0, 0.0, 5.0]"});
+  EXPECT_NE(across.find("wind.velocity: wind.model = \"vortex\" needs a wind along the flag"),
+            std::string::npos)
+      << across;
+  const std::string typo = error_of(wind, {"wind.model=\"vortx\""});
+  EXPECT_NE(typo.find("wind.model"), std::string::npos) << typo;
+}
+
 }  // namespace
 }  // namespace flagsim::detail

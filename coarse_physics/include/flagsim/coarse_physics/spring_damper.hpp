@@ -22,6 +22,7 @@
 #include "flagsim/coarse_physics/force_term.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/coarse_physics/stability.hpp"
+#include "flagsim/coarse_physics/vortex_wake.hpp"
 #include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
 
@@ -77,6 +78,9 @@ class SpringDamperSolver {
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<std::string> effects_;
   std::vector<Vec3> forces_n_;
+  /// wind.model = "vortex": the lift and the air's inertia (solved with the masses)
+  std::unique_ptr<VortexWake> vortex_;
+  int vortex_stage_ = -1;
   std::vector<std::size_t> driven_;
   Driver where_;
   std::vector<int> term_stage_;

@@ -83,8 +83,16 @@ struct Turbulence {
   double length_scale_m = 1.0;
 };
 
+/// What the air is (wind.model): the quasi-steady force on panels
+/// (aero_force.hpp) or that one's drag and friction with an unsteady vortex
+/// lattice and its shed wake for the lift and the air's inertia (vortex_wake.hpp).
+enum class AirModel { kPanels, kVortex };
+inline constexpr NameTable<AirModel, 2> kAirModelNames = {
+    {{AirModel::kPanels, "panels"}, {AirModel::kVortex, "vortex"}}};
+
 struct Wind {
   Vec3 velocity_m_s = Vec3::Zero();
+  AirModel model = AirModel::kPanels;
   double drag = 1.0;  ///< normal-force coefficient of a flat plate
   double lift = 0.5;  ///< lift coefficient
   /// Skin friction coefficient of both faces together, on the planform area:
