@@ -34,6 +34,18 @@ int validate_command(const std::string& scene_path, const std::vector<std::strin
   return int(ExitCode::kSuccess);
 }
 
+std::string printable_default_scene() {
+  // The embedded scene names its output file (a run of it writes where it
+  // always has); a copy renamed should write out/<its name>.h5, so the copy
+  // leaves the line as a comment (issue 33, item 2).
+  std::string text(default_scene_toml());
+  const std::string_view pinned = "\nfile = \"out/default.h5\"\n";
+  if (const std::size_t at = text.find(pinned); at != std::string::npos)
+    text.replace(at + 1, pinned.size() - 2,
+                 "# file = \"out/default.h5\"  # absent: out/<scene.name>.h5");
+  return text;
+}
+
 int scene_command(const std::string& scene_path, bool print_default,
                   const std::vector<std::string>& sets) {
   if (print_default && !scene_path.empty())
@@ -42,12 +54,14 @@ int scene_command(const std::string& scene_path, bool print_default,
   if (!print_default && scene_path.empty())
     throw UserError("scene: say which scene to print: flag-sim scene FILE, or scene --default");
   if (print_default && sets.empty()) {  // the file itself, comments and all
-    fmt::print("{}", default_scene_toml());
+    fmt::print("{}", printable_default_scene());
     return int(ExitCode::kSuccess);
   }
   // The scene as `run` would take it: the file with every --set applied,
   // checked, as TOML (the text a run stores in its `scene` attribute).
-  const Scene scene = load_scene(print_default ? std::string() : scene_path, sets);
+  const Scene scene =
+      print_default ? parse_scene(printable_default_scene(), kDefaultSceneName, set_overrides(sets))
+                    : load_scene(scene_path, sets);
   fmt::print("{}", scene.toml_text);
   for (const std::string& note : scene.notes) fmt::print(stderr, "{}\n", note);
   return int(ExitCode::kSuccess);

@@ -15,6 +15,10 @@ namespace flagsim::app {
 Scene load_scene(const std::string& scene_path, std::span<const Override> overrides);
 Scene load_scene(const std::string& scene_path, const std::vector<std::string>& overrides);
 
+/// The embedded default scene as `scene --default` prints it: its output.file
+/// line a comment, so that a renamed copy writes out/<scene.name>.h5.
+std::string printable_default_scene();
+
 int validate_command(const std::string& scene_path, const std::vector<std::string>& sets);
 /// `scene`: the embedded default scene as shipped (--default), or a scene (a
 /// file, or the default one) with its --set overrides applied, as TOML.

@@ -210,9 +210,38 @@ TEST(SceneCommand, DefaultSceneRoundTrips) {
   std::ifstream file(std::string(FLAGSIM_SOURCE_DIR) + "/scenes/default.toml");
   const std::string source((std::istreambuf_iterator<char>(file)),
                            std::istreambuf_iterator<char>());
-  EXPECT_EQ(printed.out, source);
+  // The file as shipped but for its output.file, printed as a comment.
+  const std::string pinned = "\nfile = \"out/default.h5\"\n";
+  const std::size_t at = source.find(pinned);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(printed.out.substr(0, at), source.substr(0, at));
+  EXPECT_EQ(printed.out.substr(at + 1, printed.out.find('\n', at + 1) - at - 1),
+            "# file = \"out/default.h5\"  # absent: out/<scene.name>.h5");
+  EXPECT_EQ(printed.out.substr(printed.out.find('\n', at + 1)),
+            source.substr(at + pinned.size() - 1));
   dir.write("d.toml", printed.out);
   EXPECT_EQ(run_flag_sim({"validate", "d.toml"}, dir.path()).exit_code, 0);
+}
+
+// Issue 33, item 2: a copy of the printed default scene, renamed, writes
+// out/<its name>.h5, not the default scene's file.
+TEST(SceneCommand, ARenamedCopyOfTheDefaultSceneWritesUnderItsOwnName) {
+  TempDir dir;
+  std::string text = run_flag_sim({"scene", "--default"}).out;
+  const std::size_t name = text.find("name = \"default\"");
+  ASSERT_NE(name, std::string::npos);
+  text.replace(name, std::string_view("name = \"default\"").size(), "name = \"windy\"");
+  dir.write("windy.toml", text);
+  const ProcessResult run = run_flag_sim(
+      {"run", "windy.toml", "--set", "flag.fine=[17,25]", "--frames", "2", "--quiet"}, dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(dir.file("out/windy.h5")));
+  EXPECT_FALSE(fs::exists(dir.file("out/default.h5")));
+  // With --set, the printed scene leaves output.file out as well.
+  const ProcessResult set = run_flag_sim({"scene", "--default", "--set", "scene.fps=24.0"});
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  EXPECT_EQ(set.out.find("file ="), std::string::npos) << set.out;
+  EXPECT_NE(set.out.find("fps = 24"), std::string::npos) << set.out;
 }
 
 // Four frames of the default scene's hybrid on 17 x 25 into `dir`/`name`; the exit code.
