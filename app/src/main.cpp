@@ -255,11 +255,14 @@ int run_main(int argc, char** argv) {
   sweep_cmd->add_option("--infill", sweep.infill, "Infill solvers side by side: smooth,paper");
   sweep_cmd->add_option("--backend", sweep.backend,
                         "Coarse physics side by side: spring-damper,bullet,implicit,xpbd");
+  sweep_cmd->add_option("--references", sweep.references,
+                        "Full-lattice reference rows: mass-spring (default; every error is "
+                        "against it), plus any of bullet,implicit,xpbd");
   sweep_cmd->add_option("-o,--output", sweep.output, "Sweep CSV");
   sweep_cmd->add_option("--plot", sweep.plot, "Error against ms per frame, PNG");
   sweep_cmd->add_option("--jobs", sweep.jobs, "Points run at a time (child processes)")
       ->check(kDecimal);
-  sweep_cmd->add_option("--point", sweep.point, "Run only point I (0, 1: references)")
+  sweep_cmd->add_option("--point", sweep.point, "Run only point I (0: the mass-spring reference)")
       ->check(kDecimal);
   sweep_cmd->add_option("--merge", sweep.merge, "Join these point CSVs instead of running");
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "No progress lines");

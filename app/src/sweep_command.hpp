@@ -11,6 +11,9 @@ namespace flagsim::app {
 struct SweepOptions {
   std::string scene_path;
   std::string coarse, substeps, relax, infill, backend;  ///< comma-separated lists
+  /// Full-lattice modes run as reference rows, mass-spring among them (the
+  /// errors are against it).
+  std::string references = "mass-spring";
   std::string output, plot;
   std::vector<std::string> sets;
   std::optional<long long> frames;

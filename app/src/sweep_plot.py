@@ -92,11 +92,15 @@ for ms, err, _ in points:  # cheapest first: a point is on the front if nothing 
 if front:
     ax.plot([p[0] for p in front], [1e3 * p[1] for p in front], color="tab:blue", alpha=0.5,
             drawstyle="steps-post", label="Pareto front")
+# The other full-lattice references (sweep --references), each its own marker.
+others = {"bullet": ("s", "tab:red", "Bullet"), "implicit": ("D", "tab:purple", "implicit Euler"),
+          "xpbd": ("^", "tab:brown", "XPBD")}
 for r in rows:
-    if r["mode"] == "bullet" and value(r, error_key):
+    if r["mode"] in others and value(r, error_key):
+        marker, colour, name = others[r["mode"]]
         ax.errorbar([value(r, "ms_per_frame")], [1e3 * value(r, error_key)],
-                    yerr=[1e3 * r["error_sd"]] if seeds > 1 else None, fmt="s", capsize=3,
-                    color="tab:red", zorder=3, label="Bullet, full lattice")
+                    yerr=[1e3 * r["error_sd"]] if seeds > 1 else None, fmt=marker, capsize=3,
+                    color=colour, zorder=3, label=f"{name}, full lattice")
     if r["mode"] == "mass-spring":
         ax.axvline(value(r, "ms_per_frame"), color="k", linestyle="--",
                    label="mass-spring reference (error 0)")

@@ -260,7 +260,7 @@ const std::vector<BadInput>& cases() {
       {"sweep_point_out_of_range",
        with("coarse = [3, 4]\n"),
        {"sweep", "SCENE", "--coarse", "3x4", "--point", "7", "-o", "s.csv"},
-       "--point 7: this sweep has points 0 to 2"},
+       "--point 7: this sweep has points 0 to 1"},
       {"sweep_without_output",
        with("coarse = [3, 4]\n"),
        {"sweep", "SCENE", "--coarse", "3x4"},

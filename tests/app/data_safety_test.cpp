@@ -141,9 +141,9 @@ TEST(DataSafety, HelperProgramsGetPathsAsArgumentsNotThroughAShell) {
   dir.write("s.toml", kTiny);
   // Two real point CSVs (a reference and a hybrid: the plot needs an error
   // above 0), then a merge whose output paths are shell syntax.
-  for (const char* point : {"0", "2"}) ASSERT_NO_FATAL_FAILURE(write_point_csv(dir, point));
+  for (const char* point : {"0", "1"}) ASSERT_NO_FATAL_FAILURE(write_point_csv(dir, point));
   const std::string hostile = "x';touch INJECTED;'.csv";
-  const ProcessResult merged = run_flag_sim({"sweep", "--merge", "p0.csv", "p2.csv", "-o", hostile,
+  const ProcessResult merged = run_flag_sim({"sweep", "--merge", "p0.csv", "p1.csv", "-o", hostile,
                                              "--plot", "p'$(touch INJECTED2)'.png"},
                                             dir.path());
   EXPECT_EQ(merged.exit_code, 0) << merged.err;

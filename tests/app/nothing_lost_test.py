@@ -119,7 +119,7 @@ with tempfile.TemporaryDirectory() as base:
     # name and no .partial; flag-sim is never killed by SIGXFSZ.
     if wanted("disk_full"):
         d = fresh("full")
-        subprocess.run([flag_sim, "sweep", "s.toml", "--coarse", "9x13", "--point", "2", "-o",
+        subprocess.run([flag_sim, "sweep", "s.toml", "--coarse", "9x13", "--point", "1", "-o",
                         "p.csv", "--quiet"], cwd=d, capture_output=True, check=True)
         cases = [
             (["compare", "s.toml", "--frames", "3", "-o", "c.csv"], 100),
@@ -132,7 +132,7 @@ with tempfile.TemporaryDirectory() as base:
             (["plot", "good.h5", "-o", "p.png"], 2000),
             (["export", "good.h5", "-o", "e.pc2"], 2000),
             (["export", "good.h5", "-o", "objs/"], 2000),
-            (["sweep", "s.toml", "--coarse", "9x13", "--frames", "3", "--point", "2", "-o",
+            (["sweep", "s.toml", "--coarse", "9x13", "--frames", "3", "--point", "1", "-o",
               "q.csv", "--reference-file", "r.rec"], 2000),
             (["sweep", "s.toml", "--coarse", "9x13", "--slurm", "batch", "-o", "b.csv"], 100),
             (["run", "s.toml", "-o", "o.h5", "--quiet"], 1000),
@@ -224,7 +224,7 @@ with tempfile.TemporaryDirectory() as base:
     # 8, 9. Non-regular files and endless files: refused before any work, quickly.
     if wanted("fifos"):
         d = fresh("fifos")
-        subprocess.run([flag_sim, "sweep", "s.toml", "--coarse", "9x13", "--point", "2", "-o",
+        subprocess.run([flag_sim, "sweep", "s.toml", "--coarse", "9x13", "--point", "1", "-o",
                         "p.csv", "--quiet"], cwd=d, capture_output=True, check=True)
         for name in ("v.gif", "t.png", "m.csv", "r.rec", "o.xdmf", "o.h5.partial", "c.csv"):
             os.mkfifo(os.path.join(d, name))
@@ -241,7 +241,7 @@ with tempfile.TemporaryDirectory() as base:
             (["sweep", "--merge", "m.csv", "-o", "n.csv"], "FIFO"),
             (["sweep", "--merge", "/dev/zero", "-o", "n.csv"], "device"),
             (["sweep", "--merge", "sparse.csv", "-o", "n.csv"], "more than flag-sim reads"),
-            (["sweep", "s.toml", "--coarse", "9x13", "--point", "2", "-o", "q.csv",
+            (["sweep", "s.toml", "--coarse", "9x13", "--point", "1", "-o", "q.csv",
               "--reference-file", "r.rec"], "FIFO"),
             (["run", "s.toml", "-o", "o.h5"], "FIFO"),
             (["render", "good.h5", "-o", "fr/"], "FIFO"),
@@ -298,7 +298,7 @@ with tempfile.TemporaryDirectory() as base:
     # 12. Messages and arguments.
     if wanted("arguments"):
         d = fresh("args")
-        subprocess.run([flag_sim, "sweep", "s.toml", "--coarse", "9x13", "--point", "2", "-o",
+        subprocess.run([flag_sim, "sweep", "s.toml", "--coarse", "9x13", "--point", "1", "-o",
                         "p.csv", "--quiet"], cwd=d, capture_output=True, check=True)
         # an output name that looks like an option is a file name to ffmpeg
         r = run(["render", "good.h5", "-o", "-y.gif", "--size", "64x48"], d)

@@ -21,25 +21,38 @@ SweepOptions lists(std::string coarse, std::string substeps = "", std::string in
   return o;
 }
 
-TEST(SweepGrid, TheTwoReferencesFirstThenTheHybridsWithTheCoarseLatticeSlowest) {
+TEST(SweepGrid, TheReferenceFirstThenTheHybridsWithTheCoarseLatticeSlowest) {
   const std::vector<SweepPoint> grid = sweep_grid(lists("5x7, 9X13", "100,200"));
-  ASSERT_EQ(grid.size(), 6u);
+  ASSERT_EQ(grid.size(), 5u);
   EXPECT_EQ(grid[0].label, "mass-spring reference");
   EXPECT_EQ(grid[0].sets, std::vector<std::string>{"scene.mode=\"mass-spring\""});
-  EXPECT_EQ(grid[1].label, "bullet reference");
-  EXPECT_EQ(grid[2].label, "hybrid 5x7 substeps 100");
-  EXPECT_EQ(grid[2].sets, (std::vector<std::string>{"scene.mode=\"hybrid\"", "flag.coarse=[5,7]",
+  EXPECT_EQ(grid[1].label, "hybrid 5x7 substeps 100");
+  EXPECT_EQ(grid[1].sets, (std::vector<std::string>{"scene.mode=\"hybrid\"", "flag.coarse=[5,7]",
                                                     "solver.substeps=100"}));
-  EXPECT_EQ(grid[3].label, "hybrid 5x7 substeps 200");
-  EXPECT_EQ(grid[4].label, "hybrid 9x13 substeps 100");
-  EXPECT_EQ(grid[5].label, "hybrid 9x13 substeps 200");
+  EXPECT_EQ(grid[2].label, "hybrid 5x7 substeps 200");
+  EXPECT_EQ(grid[3].label, "hybrid 9x13 substeps 100");
+  EXPECT_EQ(grid[4].label, "hybrid 9x13 substeps 200");
+}
+
+// Issue 33, item 11: Bullet runs only when asked for, after mass-spring,
+// whatever order the list gives; a mode named twice runs once.
+TEST(SweepGrid, OtherReferencesOnlyWhenAskedForAfterMassSpring) {
+  SweepOptions o = lists("9x13");
+  o.references = "xpbd,mass-spring,bullet,xpbd";
+  const std::vector<SweepPoint> grid = sweep_grid(o);
+  ASSERT_EQ(grid.size(), 4u);
+  EXPECT_EQ(grid[0].label, "mass-spring reference");
+  EXPECT_EQ(grid[1].label, "xpbd reference");
+  EXPECT_EQ(grid[1].sets, std::vector<std::string>{"scene.mode=\"xpbd\""});
+  EXPECT_EQ(grid[2].label, "bullet reference");
+  EXPECT_EQ(grid[3].label, "hybrid 9x13");
 }
 
 TEST(SweepGrid, TheRelaxationCapMultipliesOnlyThePaperSolversPoints) {
   const std::vector<SweepPoint> grid =
       sweep_grid(lists("9x13", "", "smooth,paper", "100,8000", "spring-damper,xpbd"));
   std::vector<std::string> labels;
-  for (std::size_t i = 2; i < grid.size(); ++i) labels.push_back(grid[i].label);
+  for (std::size_t i = 1; i < grid.size(); ++i) labels.push_back(grid[i].label);
   EXPECT_EQ(labels,
             (std::vector<std::string>{
                 "hybrid 9x13 spring-damper smooth", "hybrid 9x13 spring-damper paper relax 100",
@@ -67,6 +80,15 @@ TEST(SweepGrid, AnItemItCannotReadIsNamedWithItsFlag) {
             "--infill fast: expected infill solvers smooth and/or paper");
   EXPECT_EQ(message(lists("9x13", "", "", "", "euler")),
             "--backend euler: expected backends spring-damper, bullet, implicit and/or xpbd");
+  SweepOptions bullet = lists("9x13");
+  bullet.references = "bullet";
+  EXPECT_EQ(message(bullet),
+            "--references bullet: every error is measured against mass-spring; list it too, "
+            "e.g. --references mass-spring,bullet");
+  bullet.references = "mass-spring,havok";
+  EXPECT_EQ(message(bullet),
+            "--references havok: expected full-lattice modes mass-spring, bullet, implicit "
+            "and/or xpbd");
 }
 
 }  // namespace

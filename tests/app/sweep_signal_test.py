@@ -61,7 +61,7 @@ with tempfile.TemporaryDirectory() as tmp:
         check(children_of(proc.pid) == [], f"reference {sig.name}: workers before the reference")
         stop(proc, sig, out, f"reference {sig.name}", [])
     # With the reference saved (2 frames), the workers start at once; Bullet on
-    # 129 x 193 (point 1) takes about a minute a frame.
+    # 129 x 193 (point 1, asked for by --references) takes about a minute a frame.
     ref = os.path.join(tmp, "ref.rec")
     r = subprocess.run([flag_sim, "sweep", "--coarse", "9x13", "--frames", "2", "--point", "0",
                         "--reference-file", ref, "-o", os.path.join(tmp, "p0.csv"), "--quiet"],
@@ -71,7 +71,7 @@ with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, f"workers_{sig.name}.csv")
         proc = subprocess.Popen(
             [flag_sim, "sweep", "--coarse", "9x13", "--frames", "2", "--jobs", "2",
-             "--reference-file", ref, "-o", out, "--quiet"],
+             "--references", "mass-spring,bullet", "--reference-file", ref, "-o", out, "--quiet"],
             cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         deadline, seen = time.time() + 30, set()
         while time.time() < deadline and not any(alive(w) for w in seen):
