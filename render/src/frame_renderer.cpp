@@ -165,6 +165,16 @@ void FrameRenderer::draw_pole(const Vec3& top) const {
     glVertex3d(top.x() - radius + radius * c, top.y() + 0.05, top.z() + radius * s);
   }
   glEnd();
+  // Its top closed: a solid pole, not a tube, seen from above.
+  glBegin(GL_TRIANGLE_FAN);
+  glNormal3d(0.0, 1.0, 0.0);
+  glVertex3d(top.x() - radius, top.y() + 0.05, top.z());
+  for (int i = 16; i >= 0; --i) {
+    const double a = 2.0 * std::numbers::pi * i / 16;
+    glVertex3d(top.x() - radius + radius * std::cos(a), top.y() + 0.05,
+               top.z() + radius * std::sin(a));
+  }
+  glEnd();
 }
 
 int FrameRenderer::wire_step(const FrameView& frame) const {
