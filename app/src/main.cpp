@@ -24,6 +24,7 @@
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
 #include "flagsim/core/near_miss.hpp"
+#include "flagsim/core/scene_keys.hpp"
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/hdf5_library.hpp"
 #include "flagsim/render/offscreen_context.hpp"
@@ -307,8 +308,17 @@ int run_main(int argc, char** argv) {
     fmt::print("{}", cli.help());
     return int(ExitCode::kSuccess);
   }
+  if (help && std::string_view(command) == "keys") {  // every scene key, from the parser
+    try {
+      fmt::print("{}", flagsim::keys_reference());
+    } catch (const flagsim::UserError& e) {  // the reference scenes are the parser's own
+      return fail(ExitCode::kInternal, e.what());
+    }
+    return int(ExitCode::kSuccess);
+  }
   if (command && command[0] != '-') {
     std::vector<std::string_view> names = {"help"};
+    if (help) names.push_back("keys");  // flag-sim help keys
     for (const CLI::App* sub : subcommands) {
       if (sub->get_name() != command) {
         names.push_back(sub->get_name());

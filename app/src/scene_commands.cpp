@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "flagsim/core/errors.hpp"
+#include "flagsim/core/scene_keys.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 
@@ -58,11 +59,13 @@ int scene_command(const std::string& scene_path, bool print_default,
     return int(ExitCode::kSuccess);
   }
   // The scene as `run` would take it: the file with every --set applied,
-  // checked, as TOML (the text a run stores in its `scene` attribute).
+  // checked, every key its run uses with its value (defaults marked).
+  std::vector<SceneKey> keys;
+  const std::vector<Override> overrides = set_overrides(sets);
   const Scene scene =
-      print_default ? parse_scene(printable_default_scene(), kDefaultSceneName, set_overrides(sets))
-                    : load_scene(scene_path, sets);
-  fmt::print("{}", scene.toml_text);
+      print_default ? parse_scene(printable_default_scene(), kDefaultSceneName, overrides, &keys)
+                    : load_scene_file(scene_path, overrides, &keys);
+  fmt::print("{}", effective_scene_toml(scene, keys));
   for (const std::string& note : scene.notes) fmt::print(stderr, "{}\n", note);
   return int(ExitCode::kSuccess);
 }

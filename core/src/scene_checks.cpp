@@ -156,6 +156,20 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
                                       to_string(scene.mode), fmt::join(unused, ", ")));
+  // Issue 33, item 6: a minimal scene's defaults are the schema's, not the
+  // default scene's; said where the user meets them. (Gravity and wind act
+  // only when their tables are there, by the contract.)
+  if (!scene_in.has("mode") && !mode_from_command_line)
+    scene.notes.push_back(fmt::format(
+        "note: no scene.mode: {} mode on the full {} x {} lattice (the default scene is a "
+        "hybrid; `flag-sim scene FILE` shows every default, `flag-sim help keys` lists them)",
+        to_string(scene.mode), flag.fine_rows, flag.fine_cols));
+  if (scene.wind && scene.wind->velocity_m_s.z() == 0.0 && !scene.wind->turbulence && !scene.pole &&
+      flag.initial_perturbation_m == 0.0 && scene.mode != Mode::kInfill &&
+      (!scene.gravity || scene.gravity->acceleration_m_s2.z() == 0.0))
+    scene.notes.push_back(
+        "note: flag.initial_perturbation = 0 in a steady wind along the flag's plane: the flag "
+        "stays flat, nothing breaks its symmetry (the default scene starts from 0.005 m)");
 }
 
 }  // namespace flagsim::detail

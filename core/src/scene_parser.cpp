@@ -199,7 +199,8 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
   flag.width_m = size[0];
   flag.height_m = size[1];
   flag.origin_m = in.vec3("origin", flag.origin_m, "m", limits::kCoordinate_m);
-  if (auto fine = in.int_pair("fine", 2, kMaxLatticeSide, "[J, K] nodes")) {
+  if (auto fine = in.int_pair("fine", 2, kMaxLatticeSide, "[J, K] nodes",
+                              std::array{flag.fine_rows, flag.fine_cols})) {
     flag.fine_rows = (*fine)[0];
     flag.fine_cols = (*fine)[1];
   }
@@ -355,6 +356,11 @@ void read_infill_tables(TableReader& root, Scene& scene) {
             "expected 4 corners [[x,y,z], ...] in the order (0,0), (0,K-1), (J-1,0), (J-1,K-1)");
       for (int c = 0; c < 4; ++c)
         key.corners_m[c] = in.vec3_item("corners", *array->get(c), "m", limits::kCoordinate_m);
+      in.note("corners",
+              fmt::format("[{}, {}, {}, {}]", detail::toml_vec3(key.corners_m[0]),
+                          detail::toml_vec3(key.corners_m[1]), detail::toml_vec3(key.corners_m[2]),
+                          detail::toml_vec3(key.corners_m[3])),
+              "m", "4 corners [x, y, z], (0,0), (0,K-1), (J-1,0), (J-1,K-1)");
       check_corner_reach(in, key, scene.flag);
       in.finish(kAllKeys);
       if (!scene.keyframes.empty() && key.time_s <= scene.keyframes.back().time_s)
@@ -365,9 +371,18 @@ void read_infill_tables(TableReader& root, Scene& scene) {
   }
 }
 
+// The settings tables ([solver], [output], [limits]) are read when absent
+// too, as empty tables: the same defaults, and every key the run uses is read
+// (the KeyLog: `flag-sim scene` prints them).
+const toml::table& empty_table() {
+  static const toml::table empty;
+  return empty;
+}
+
 void read_run_tables(TableReader& root, Scene& scene) {
-  if (const toml::table* t = root.subtable("solver")) {
-    TableReader in(*t, "solver", root.where_of("solver"));
+  {
+    const toml::table* t = root.subtable("solver");
+    TableReader in(t ? *t : empty_table(), "solver", root.where_of("solver"));
     scene.solver.backend = in.choice_of("backend", scene.solver.backend, kBackendNames);
     scene.solver.substeps = int(in.integer("substeps", scene.solver.substeps, 1, 1'000'000));
     if (auto iterations = in.optional_integer("iterations", 1, 10'000))
@@ -377,10 +392,11 @@ void read_run_tables(TableReader& root, Scene& scene) {
         "max_step_strain_change", scene.solver.max_step_strain_change, Bound{0.0, 10.0, true}, "");
     in.finish(kAllKeys);
   }
-  if (const toml::table* t = root.subtable("output")) {
-    TableReader in(*t, "output", root.where_of("output"));
+  {
+    const toml::table* t = root.subtable("output");
+    TableReader in(t ? *t : empty_table(), "output", root.where_of("output"));
     scene.output.file = in.string("file", scene.output.file);
-    if (t->get("file") && scene.output.file.empty())
+    if (in.has("file") && scene.output.file.empty())
       in.fail("file", "an empty path; give a file name or leave the key out (out/<scene.name>.h5)");
     scene.output.every = int(in.integer("every", scene.output.every, 1, kMaxFrames));
     scene.output.flush_every =
@@ -394,8 +410,8 @@ void read_run_tables(TableReader& root, Scene& scene) {
     TableReader in(*t, "render", root.where_of("render"));
     Render render;
     render.style = in.choice_of("style", render.style, kRenderStyleNames);
-    if (auto size =
-            in.int_pair("size", limits::kImageSideMin, limits::kImageSideMax, "[w, h] pixels"))
+    if (auto size = in.int_pair("size", limits::kImageSideMin, limits::kImageSideMax,
+                                "[w, h] pixels", render.size_px))
       render.size_px = *size;
     render.texture = in.string("texture", render.texture);
     if (t->get("texture") && render.texture.empty())
@@ -403,8 +419,9 @@ void read_run_tables(TableReader& root, Scene& scene) {
     in.finish(kAllKeys);
     scene.render = render;
   }
-  if (const toml::table* t = root.subtable("limits")) {
-    TableReader in(*t, "limits", root.where_of("limits"));
+  {
+    const toml::table* t = root.subtable("limits");
+    TableReader in(t ? *t : empty_table(), "limits", root.where_of("limits"));
     scene.limits.max_strain = in.real("max_strain", scene.limits.max_strain, Bound::positive(), "");
     scene.limits.max_speed_m_s =
         in.real("max_speed", scene.limits.max_speed_m_s, Bound{0.0, 1.0e6, true}, "m/s");
@@ -472,7 +489,7 @@ Scene load_scene_file(const std::string& path, std::span<const std::string> over
 }
 
 Scene parse_scene(std::string_view toml_text, std::string_view source_path,
-                  std::span<const Override> overrides) {
+                  std::span<const Override> overrides, std::vector<SceneKey>* keys) {
   check_nesting(toml_text, source_path);
   toml::table root;
   try {
@@ -488,10 +505,17 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_path,
       labels.begin(), labels.end(),
       [](const auto& label) { return label.first == "scene.mode" || label.first == "scene"; });
   const detail::OverrideLabels scope(std::move(labels));
-  return build_scene(root, source_path, mode_from_command_line);
+  if (!keys) return build_scene(root, source_path, mode_from_command_line);
+  const detail::KeyLog log;
+  Scene scene = build_scene(root, source_path, mode_from_command_line);
+  keys->clear();
+  for (const detail::KeyRecord& r : log.records())
+    keys->push_back({r.key, r.value, r.unit, r.range, r.given});
+  return scene;
 }
 
-Scene load_scene_file(const std::string& path, std::span<const Override> overrides) {
+Scene load_scene_file(const std::string& path, std::span<const Override> overrides,
+                      std::vector<SceneKey>* keys) {
   // Only a regular file, and only as much as a scene can be: a FIFO would
   // block, /dev/zero would never end.
   constexpr std::uintmax_t kMaxSceneBytes = 1 << 20;
@@ -509,7 +533,7 @@ Scene load_scene_file(const std::string& path, std::span<const Override> overrid
                                 size, kMaxSceneBytes));
   std::ostringstream text;
   text << file.rdbuf();
-  return parse_scene(text.str(), path, overrides);
+  return parse_scene(text.str(), path, overrides, keys);
 }
 
 }  // namespace flagsim

@@ -8,6 +8,7 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/near_miss.hpp"
+#include "flagsim/core/scene_parser.hpp"
 
 namespace flagsim::detail {
 namespace {
@@ -44,7 +45,33 @@ std::string format_number(double x) {
   return fmt::format("{:g}", x);
 }
 
+thread_local KeyLog* t_key_log = nullptr;
+
 }  // namespace
+
+std::string toml_real(double x) {
+  std::string text = fmt::format("{}", x);  // the shortest round trip
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string toml_vec3(const Vec3& v) {
+  return fmt::format("[{}, {}, {}]", toml_real(v.x()), toml_real(v.y()), toml_real(v.z()));
+}
+
+KeyLog::KeyLog() {
+  t_key_log = this;
+}
+KeyLog::~KeyLog() {
+  t_key_log = nullptr;
+}
+
+void TableReader::note(std::string_view key, std::string value, std::string_view unit,
+                       std::string range) const {
+  if (!t_key_log) return;
+  t_key_log->records_.push_back(
+      {key_name(key), std::move(value), std::string(unit), std::move(range), table_.contains(key)});
+}
 
 std::string where(const toml::source_region& source) {
   std::string path = source.path ? *source.path : std::string("<scene>");
@@ -124,6 +151,13 @@ const toml::node* TableReader::lookup(std::string_view key) {
 
 std::optional<double> TableReader::optional_real(std::string_view key, Bound bound,
                                                  std::string_view unit) {
+  const std::optional<double> x = read_real(key, bound, unit);
+  note(key, x ? toml_real(*x) : std::string(), unit, bound.describe());
+  return x;
+}
+
+std::optional<double> TableReader::read_real(std::string_view key, Bound bound,
+                                             std::string_view unit) {
   const toml::node* node = lookup(key);
   if (!node) return std::nullopt;
   const std::string what =
@@ -136,11 +170,21 @@ std::optional<double> TableReader::optional_real(std::string_view key, Bound bou
 
 double TableReader::real(std::string_view key, double fallback, Bound bound,
                          std::string_view unit) {
-  return optional_real(key, bound, unit).value_or(fallback);
+  const double x = read_real(key, bound, unit).value_or(fallback);
+  note(key, toml_real(x), unit, bound.describe());
+  return x;
 }
 
 std::optional<long long> TableReader::optional_integer(std::string_view key, long long low,
                                                        long long high) {
+  const std::optional<long long> x = read_integer(key, low, high);
+  note(key, x ? std::to_string(*x) : std::string(), "",
+       fmt::format("an integer in [{}, {}]", low, high));
+  return x;
+}
+
+std::optional<long long> TableReader::read_integer(std::string_view key, long long low,
+                                                   long long high) {
   const toml::node* node = lookup(key);
   if (!node) return std::nullopt;
   const std::string what = fmt::format("an integer in [{}, {}]", low, high);
@@ -152,21 +196,26 @@ std::optional<long long> TableReader::optional_integer(std::string_view key, lon
 
 long long TableReader::integer(std::string_view key, long long fallback, long long low,
                                long long high) {
-  return optional_integer(key, low, high).value_or(fallback);
+  const long long x = read_integer(key, low, high).value_or(fallback);
+  note(key, std::to_string(x), "", fmt::format("an integer in [{}, {}]", low, high));
+  return x;
 }
 
 std::string TableReader::string(std::string_view key, std::string fallback) {
   const toml::node* node = lookup(key);
-  if (!node) return fallback;
-  if (!node->is_string()) expected(key, *node, "a string");
-  return *node->value<std::string>();
+  if (node && !node->is_string()) expected(key, *node, "a string");
+  std::string value = node ? *node->value<std::string>() : std::move(fallback);
+  // An empty default is "not set": the reader's caller decides what it means.
+  note(key, value.empty() && !node ? std::string() : toml_string(value), "", "a string");
+  return value;
 }
 
 bool TableReader::boolean(std::string_view key, bool fallback) {
   const toml::node* node = lookup(key);
-  if (!node) return fallback;
-  if (!node->is_boolean()) expected(key, *node, "true or false");
-  return *node->value<bool>();
+  if (node && !node->is_boolean()) expected(key, *node, "true or false");
+  const bool value = node ? *node->value<bool>() : fallback;
+  note(key, value ? "true" : "false", "", "true or false");
+  return value;
 }
 
 std::string TableReader::choice(std::string_view key, std::string fallback,
@@ -176,11 +225,17 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
   for (std::string_view c : choices)
     listed += fmt::format("{}\"{}\"", listed.empty() ? "" : ", ", c);
   const std::string what = "one of " + listed;
-  if (!node) return fallback;
+  if (!node) {
+    note(key, toml_string(fallback), "", what);
+    return fallback;
+  }
   if (!node->is_string()) expected(key, *node, what);
   std::string value = *node->value<std::string>();
   for (std::string_view c : choices)
-    if (value == c) return value;
+    if (value == c) {
+      note(key, toml_string(value), "", what);
+      return value;
+    }
   const std::string guess = closest_name(value, choices);
   throw UserError(fmt::format("{}: {}: expected {}, got \"{}\"{}",
                               where_key(key_name(key), node->source()), key_name(key), what, value,
@@ -189,7 +244,21 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
 
 std::vector<std::string> TableReader::choice_set(std::string_view key,
                                                  std::vector<std::string> fallback,
-                                                 std::vector<std::string_view> choices) {
+                                                 const std::vector<std::string_view>& choices) {
+  std::vector<std::string> values = read_choice_set(key, std::move(fallback), choices);
+  std::string text;
+  for (const std::string& value : values)
+    text += fmt::format("{}{}", text.empty() ? "" : ", ", toml_string(value));
+  std::string listed;
+  for (std::string_view c : choices)
+    listed += fmt::format("{}\"{}\"", listed.empty() ? "" : ", ", c);
+  note(key, "[" + text + "]", "", "distinct names, each one of " + listed);
+  return values;
+}
+
+std::vector<std::string> TableReader::read_choice_set(
+    std::string_view key, std::vector<std::string> fallback,
+    const std::vector<std::string_view>& choices) {
   const toml::node* node = lookup(key);
   if (!node) return fallback;
   std::string listed;
@@ -220,7 +289,12 @@ std::vector<std::string> TableReader::choice_set(std::string_view key,
 Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback, std::string_view unit,
                        double max_abs) {
   const toml::node* node = lookup(key);
-  return node ? vec3_item(key, *node, unit, max_abs) : fallback;
+  Vec3 v = node ? vec3_item(key, *node, unit, max_abs) : fallback;
+  note(key, toml_vec3(v), unit,
+       std::isfinite(max_abs) ? fmt::format("[x, y, z], each in [{}, {}]", format_number(-max_abs),
+                                            format_number(max_abs))
+                              : "[x, y, z] of finite numbers");
+  return v;
 }
 
 Vec3 TableReader::vec3_item(std::string_view key, const toml::node& node, std::string_view unit,
@@ -244,6 +318,15 @@ Vec3 TableReader::vec3_item(std::string_view key, const toml::node& node, std::s
 
 std::array<double, 2> TableReader::real_pair(std::string_view key, std::array<double, 2> fallback,
                                              Bound bound, std::string_view what_pair) {
+  const std::array<double, 2> pair = read_real_pair(key, fallback, bound, what_pair);
+  note(key, fmt::format("[{}, {}]", toml_real(pair[0]), toml_real(pair[1])), what_pair,
+       "two numbers " + bound.describe());
+  return pair;
+}
+
+std::array<double, 2> TableReader::read_real_pair(std::string_view key,
+                                                  std::array<double, 2> fallback, Bound bound,
+                                                  std::string_view what_pair) {
   const toml::node* node = lookup(key);
   if (!node) return fallback;
   const std::string what = fmt::format("{}, two numbers {}", what_pair, bound.describe());
@@ -260,8 +343,18 @@ std::array<double, 2> TableReader::real_pair(std::string_view key, std::array<do
 }
 
 std::optional<std::array<int, 2>> TableReader::int_pair(std::string_view key, long long low,
-                                                        long long high,
-                                                        std::string_view what_pair) {
+                                                        long long high, std::string_view what_pair,
+                                                        std::optional<std::array<int, 2>> shown) {
+  const std::optional<std::array<int, 2>> pair = read_int_pair(key, low, high, what_pair);
+  const std::optional<std::array<int, 2>> taken = pair ? pair : shown;
+  note(key, taken ? fmt::format("[{}, {}]", (*taken)[0], (*taken)[1]) : std::string(), what_pair,
+       fmt::format("two integers in [{}, {}]", low, high));
+  return pair;
+}
+
+std::optional<std::array<int, 2>> TableReader::read_int_pair(std::string_view key, long long low,
+                                                             long long high,
+                                                             std::string_view what_pair) {
   const toml::node* node = lookup(key);
   if (!node) return std::nullopt;
   const std::string what = fmt::format("{}, two integers in [{}, {}]", what_pair, low, high);
@@ -286,11 +379,20 @@ const toml::table* TableReader::subtable(std::string_view key) {
 }
 
 void TableReader::finish(std::span<const std::string_view> elsewhere) const {
+  // The unknown key that comes first in the file (the table iterates in key
+  // order: "two bad keys reported line 21 before line 19", issue 33 item 8).
+  const toml::key* first = nullptr;
+  const auto before = [](const toml::source_position& a, const toml::source_position& b) {
+    return a.line < b.line || (a.line == b.line && a.column < b.column);
+  };
   for (auto&& [key, node] : table_) {
-    const std::string_view name = key.str();
     bool is_known = false;
-    for (const std::string& k : known_) is_known = is_known || k == name;
-    if (is_known) continue;
+    for (const std::string& k : known_) is_known = is_known || k == key.str();
+    if (!is_known && (!first || before(key.source().begin, first->source().begin))) first = &key;
+  }
+  if (first) {
+    const toml::key& key = *first;
+    const std::string_view name = key.str();
     std::vector<std::string_view> local(known_.begin(), known_.end());
     std::string guess = closest_name(name, local);
     if (!guess.empty()) guess = key_name(guess);

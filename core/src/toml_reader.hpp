@@ -36,6 +36,36 @@ class OverrideLabels {
 /// or FILE:LINE:COL.
 std::string where_key(const std::string& key, const toml::source_region& source);
 
+/// One key as a parse read it (for `flag-sim scene` and `help keys`).
+struct KeyRecord {
+  std::string key;     ///< dotted
+  std::string value;   ///< TOML text of the value the scene takes; "" for an absent optional key
+  std::string unit;    ///< as the read states it
+  std::string range;   ///< what the read accepts
+  bool given = false;  ///< in the table (the file or an override); else the default
+};
+
+/// While alive, every TableReader read of this thread is recorded here, in
+/// reading order. One per parse.
+class KeyLog {
+ public:
+  KeyLog();
+  ~KeyLog();
+  KeyLog(const KeyLog&) = delete;
+  KeyLog& operator=(const KeyLog&) = delete;
+  const std::vector<KeyRecord>& records() const { return records_; }
+
+ private:
+  friend class TableReader;
+  std::vector<KeyRecord> records_;
+};
+
+/// A double as TOML writes it back: the shortest text that reads back to the
+/// same double, with a decimal point ("0.2", "20000.0", "1e-06").
+std::string toml_real(double x);
+/// [x, y, z] as TOML, each as toml_real.
+std::string toml_vec3(const Vec3& v);
+
 /// An allowed interval for a number, with its description for messages.
 struct Bound {
   double low = -1e300;
@@ -78,7 +108,7 @@ class TableReader {
   }
   /// An array of distinct strings, each one of `choices` (in the order given).
   std::vector<std::string> choice_set(std::string_view key, std::vector<std::string> fallback,
-                                      std::vector<std::string_view> choices);
+                                      const std::vector<std::string_view>& choices);
   /// [x, y, z] of finite numbers, each of magnitude at most `max_abs`.
   Vec3 vec3(std::string_view key, const Vec3& fallback, std::string_view unit,
             double max_abs = std::numeric_limits<double>::infinity());
@@ -89,9 +119,11 @@ class TableReader {
   /// [a, b] of numbers inside `bound`.
   std::array<double, 2> real_pair(std::string_view key, std::array<double, 2> fallback, Bound bound,
                                   std::string_view what);
-  /// [a, b] of integers in [low, high].
+  /// [a, b] of integers in [low, high]; `shown` is the default the caller
+  /// keeps when the key is absent (for the KeyLog only).
   std::optional<std::array<int, 2>> int_pair(std::string_view key, long long low, long long high,
-                                             std::string_view what);
+                                             std::string_view what,
+                                             std::optional<std::array<int, 2>> shown = {});
   /// The sub-table at `key`, if present (must be a table).
   const toml::table* subtable(std::string_view key);
   /// Marks a key as known without reading it (it is read elsewhere).
@@ -101,9 +133,22 @@ class TableReader {
   void finish(std::span<const std::string_view> elsewhere = {}) const;
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  /// Appends the read of `key` to the live KeyLog, if any (the typed reads
+  /// do; a key read by hand, as keyframe.corners, says it here).
+  void note(std::string_view key, std::string value, std::string_view unit,
+            std::string range) const;
 
  private:
   const toml::node* lookup(std::string_view key);
+  // The reads themselves, before note().
+  std::optional<double> read_real(std::string_view key, Bound bound, std::string_view unit);
+  std::optional<long long> read_integer(std::string_view key, long long low, long long high);
+  std::vector<std::string> read_choice_set(std::string_view key, std::vector<std::string> fallback,
+                                           const std::vector<std::string_view>& choices);
+  std::array<double, 2> read_real_pair(std::string_view key, std::array<double, 2> fallback,
+                                       Bound bound, std::string_view what_pair);
+  std::optional<std::array<int, 2>> read_int_pair(std::string_view key, long long low,
+                                                  long long high, std::string_view what_pair);
   [[noreturn]] void expected(std::string_view key, const toml::node& node,
                              const std::string& what) const;
 

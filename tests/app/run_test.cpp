@@ -223,6 +223,41 @@ TEST(SceneCommand, DefaultSceneRoundTrips) {
   EXPECT_EQ(run_flag_sim({"validate", "d.toml"}, dir.path()).exit_code, 0);
 }
 
+// Issue 33, item 7: every scene key with its default, unit, range and meaning,
+// from the parser itself.
+TEST(SceneCommand, HelpKeysListsEveryKey) {
+  const ProcessResult keys = run_flag_sim({"help", "keys"});
+  ASSERT_EQ(keys.exit_code, 0) << keys.err;
+  EXPECT_NE(keys.out.find("flag.areal_density = 0.2 (kg/m^2; in [0.0001, 100])"), std::string::npos)
+      << keys.out;
+  EXPECT_NE(keys.out.find("wind.friction = 0.015"), std::string::npos) << keys.out;
+  const ProcessResult typo = run_flag_sim({"help", "kyes"});
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.err.find("did you mean 'keys'?"), std::string::npos) << typo.err;
+}
+
+// Issue 33, item 6: a minimal scene runs the schema's defaults, not the
+// default scene's; validate says so, and that a flat flag will stay flat.
+TEST(SceneCommand, AMinimalSceneIsToldWhatItsDefaultsAre) {
+  TempDir dir;
+  dir.write("min.toml", "[wind]\nvelocity = [5.0, 0.0, 0.0]\n");
+  const ProcessResult check = run_flag_sim({"validate", "min.toml"}, dir.path());
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_NE(check.out.find("note: no scene.mode: mass-spring mode on the full 33 x 49 lattice"),
+            std::string::npos)
+      << check.out;
+  EXPECT_NE(check.out.find("note: flag.initial_perturbation = 0 in a steady wind"),
+            std::string::npos)
+      << check.out;
+  // With a mode and a perturbation, nothing to say.
+  dir.write("set.toml",
+            "[scene]\nmode = \"mass-spring\"\n[flag]\ninitial_perturbation = 0.005\n"
+            "[wind]\nvelocity = [5.0, 0.0, 0.0]\n");
+  const ProcessResult quiet = run_flag_sim({"validate", "set.toml"}, dir.path());
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.out.find("note:"), std::string::npos) << quiet.out;
+}
+
 // Issue 33, item 2: a copy of the printed default scene, renamed, writes
 // out/<its name>.h5, not the default scene's file.
 TEST(SceneCommand, ARenamedCopyOfTheDefaultSceneWritesUnderItsOwnName) {
@@ -262,7 +297,10 @@ TEST(SceneCommand, PrintsTheSceneWithItsOverrides) {
   const ProcessResult effective = run_flag_sim(
       {"scene", "windy.toml", "--set", "flag.fine=[5,7]", "--set", "scene.seed=9"}, dir.path());
   ASSERT_EQ(effective.exit_code, 0) << effective.err;
-  EXPECT_NE(effective.out.find("fine = [ 5, 7 ]"), std::string::npos) << effective.out;
+  EXPECT_NE(effective.out.find("fine = [5, 7]"), std::string::npos) << effective.out;
+  // Every key the run takes, the ones the file leaves out marked (issue 33, item 7).
+  EXPECT_NE(effective.out.find("shear_modulus = "), std::string::npos) << effective.out;
+  EXPECT_NE(effective.out.find("# N/m; default"), std::string::npos) << effective.out;
   EXPECT_NE(effective.out.find("seed = 9"), std::string::npos) << effective.out;
   dir.write("effective.toml", effective.out);
   const ProcessResult check = run_flag_sim({"validate", "effective.toml"}, dir.path());

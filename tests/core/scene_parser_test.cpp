@@ -198,6 +198,18 @@ TEST(SceneParser, OutputFieldsAreNamesFromTheirList) {
       std::string::npos);
 }
 
+// Issue 33, item 8: of two unknown keys, the one that comes first in the
+// file is reported (the table keeps its keys in alphabetical order).
+TEST(SceneParser, OfTwoUnknownKeysTheFirstInTheFileIsReported) {
+  try {
+    parse_scene("[flag]\nzebra = 1\nsize = [1.5, 1.0]\nalpha = 2\n", "s.toml");
+    ADD_FAILURE() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_TRUE(std::string(e.what()).starts_with("s.toml:2:1: unknown key 'flag.zebra'"))
+        << e.what();
+  }
+}
+
 TEST(SceneParser, KeyInTheWrongTableIsPointedToItsHome) {
   EXPECT_NE(error_of(std::string("pin = \"left\"\n") + kMinimal).find("did you mean 'flag.pin'?"),
             std::string::npos);
