@@ -167,7 +167,7 @@ int run_main(int argc, char** argv) {
   std::string validate_path;
   std::vector<std::string> validate_sets;
   CLI::App* validate_cmd = cli.add_subcommand("validate", "Check a scene file without running it");
-  validate_cmd->add_option("scene", validate_path, "Scene file (TOML)")->required();
+  validate_cmd->add_option("scene", validate_path, "Scene file (TOML; default: the embedded one)");
   validate_cmd->add_option("--set", validate_sets, "Override a scene key: KEY=VALUE (TOML value)");
 
   std::string info_path;
@@ -181,7 +181,7 @@ int run_main(int argc, char** argv) {
   std::vector<std::string> scene_sets;
   CLI::App* scene_cmd =
       cli.add_subcommand("scene", "Print a scene as run would take it (after --set), as TOML");
-  scene_cmd->add_option("scene", scene_path, "Scene file (TOML)");
+  scene_cmd->add_option("scene", scene_path, "Scene file (TOML; default: the embedded one)");
   scene_cmd->add_flag("--default", print_default, "The embedded default scene");
   scene_cmd->add_option("--set", scene_sets, "Override a scene key (TOML value)");
 

@@ -16,6 +16,7 @@
 #include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/limits.hpp"
 #include "flagsim/core/message.hpp"
+#include "flagsim/core/near_miss.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/data/output_reader.hpp"
@@ -175,18 +176,22 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
     plan.style = scene_render->style;
   }
   if (request.size) std::tie(plan.width, plan.height) = parse_size(*request.size);
+  // "--style shadd: expected one of ... (did you mean "shaded"?)" (issue 33, item 8).
+  const auto unknown = [](const char* flag, const std::string& typed, const auto& table) {
+    const std::vector<std::string_view> names = names_in(table);
+    const std::string guess = detail::closest_name(typed, names);
+    return UserError(fmt::format(
+        "{} {}: expected one of \"{}\"{}", flag, printable(typed), fmt::join(names, "\", \""),
+        guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
+  };
   if (request.style) {
     const auto style = render::parse_style(*request.style);
-    if (!style)
-      throw UserError(fmt::format("--style {}: expected one of \"{}\"", *request.style,
-                                  fmt::join(names_in(kRenderStyleNames), "\", \"")));
+    if (!style) throw unknown("--style", *request.style, kRenderStyleNames);
     plan.style = *style;
   }
   if (request.camera) {
     const auto view = render::parse_view(*request.camera);
-    if (!view)
-      throw UserError(fmt::format("--camera {}: expected one of \"{}\"", printable(*request.camera),
-                                  fmt::join(names_in(render::kViewNames), "\", \"")));
+    if (!view) throw unknown("--camera", *request.camera, render::kViewNames);
     plan.view = *view;
   }
   if (request.frames)

@@ -27,9 +27,9 @@ int validate_command(const std::string& scene_path, const std::vector<std::strin
     stepping += fmt::format(", {} {:.4g}{}", number.name, number.value,
                             number.units == "1" ? "" : " " + number.units);
   fmt::print("ok: {}: scene \"{}\", mode {}, {} x {} nodes, {} frames at {} fps, effects {}{}\n",
-             scene_path, scene.name, to_string(scene.mode), scene.flag.fine_rows,
-             scene.flag.fine_cols, scene.simulated_frames(), scene.fps,
-             fmt::join(simulation->effects(), ","), stepping);
+             scene_path.empty() ? std::string(kDefaultSceneName) : scene_path, scene.name,
+             to_string(scene.mode), scene.flag.fine_rows, scene.flag.fine_cols,
+             scene.simulated_frames(), scene.fps, fmt::join(simulation->effects(), ","), stepping);
   for (const std::string& note : scene.notes) fmt::print("{}\n", note);
   if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   return int(ExitCode::kSuccess);
@@ -52,8 +52,6 @@ int scene_command(const std::string& scene_path, bool print_default,
   if (print_default && !scene_path.empty())
     throw UserError(
         fmt::format("scene {} --default: give a scene file or --default, not both", scene_path));
-  if (!print_default && scene_path.empty())
-    throw UserError("scene: say which scene to print: flag-sim scene FILE, or scene --default");
   if (print_default && sets.empty()) {  // the file itself, comments and all
     fmt::print("{}", printable_default_scene());
     return int(ExitCode::kSuccess);
@@ -62,9 +60,10 @@ int scene_command(const std::string& scene_path, bool print_default,
   // checked, every key its run uses with its value (defaults marked).
   std::vector<SceneKey> keys;
   const std::vector<Override> overrides = set_overrides(sets);
-  const Scene scene =
-      print_default ? parse_scene(printable_default_scene(), kDefaultSceneName, overrides, &keys)
-                    : load_scene_file(scene_path, overrides, &keys);
+  // No file: the embedded scene, as `run` with no file takes it.
+  const Scene scene = scene_path.empty() ? parse_scene(printable_default_scene(), kDefaultSceneName,
+                                                       overrides, &keys)
+                                         : load_scene_file(scene_path, overrides, &keys);
   fmt::print("{}", effective_scene_toml(scene, keys));
   for (const std::string& note : scene.notes) fmt::print(stderr, "{}\n", note);
   return int(ExitCode::kSuccess);

@@ -21,7 +21,8 @@ std::string printable_default_scene();
 
 int validate_command(const std::string& scene_path, const std::vector<std::string>& sets);
 /// `scene`: the embedded default scene as shipped (--default), or a scene (a
-/// file, or the default one) with its --set overrides applied, as TOML.
+/// file, or with none the embedded one) as its run takes it, --set applied:
+/// every key it uses, defaults marked (effective_scene_toml).
 int scene_command(const std::string& scene_path, bool print_default,
                   const std::vector<std::string>& sets);
 

@@ -192,6 +192,11 @@ const std::vector<BadInput>& cases() {
        kBase,
        {"run", "SCENE", "--render", "frames", "--style", "sketch"},
        "--style sketch: expected one of \"wireframe\", \"shaded\", \"textured\""},
+      {"run_render_misspelt_style",
+       kBase,
+       {"run", "SCENE", "--render", "frames", "--style", "shadd"},
+       "--style shadd: expected one of \"wireframe\", \"shaded\", \"textured\" (did you mean "
+       "\"shaded\"?)"},
       {"run_render_missing_texture",
        kBase,
        {"run", "SCENE", "--render", "frames", "--style", "textured", "--texture", "none.png"},

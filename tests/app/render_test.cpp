@@ -204,6 +204,7 @@ TEST(Render, AFrameRangeAndACameraView) {
            {{"--frames", "3:1"}, "the range is empty"},
            {{"--frames", "a:b"}, "expected N (one frame; -1 the last) or A:B"},
            {{"--camera", "top"}, "--camera top: expected one of"},
+           {{"--camera", "sid"}, "(did you mean \"side\"?)"},
            {{"--eye", "1,2"}, "--eye 1,2: expected X,Y,Z in metres"},
            {{"--eye", "1,2,3,4"}, "--eye 1,2,3,4: expected X,Y,Z"},
            {{"--eye", "1,2,2e5"}, "each coordinate within"},
