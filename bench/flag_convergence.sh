@@ -28,7 +28,8 @@
 # About 50 minutes for `convergence` on one core (mass-spring at 129x193: 2.9 s
 # a frame), 3 for `laws`, 1 for `hybrid`.
 # Usage: bench/flag_convergence.sh convergence|hybrid|laws|plot|all OUT_DIR
-#   env FRAMES (default 181: 6 s), FRAMES_FINEST (181, at 129x193), SEEDS ("1 2 3")
+#   env FRAMES (default 181: 6 s), FRAMES_FINEST (181, at 129x193), SEEDS ("1 2 3"),
+#   SETS (scene keys for every run, e.g. "wind.panel=0.25 bending.stiffness=1e-4")
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 what="${1:?convergence, hybrid, laws, plot or all}"
@@ -36,6 +37,8 @@ out="${2:?an output directory}"
 frames="${FRAMES:-181}"
 frames_finest="${FRAMES_FINEST:-181}"
 read -r -a seeds <<<"${SEEDS:-1 2 3}"
+extra=()
+for set in ${SETS:-}; do extra+=(--set "$set"); done
 mkdir -p "$out"
 metrics=(/usr/bin/python3 "$root/bench/flag_metrics.py")
 
@@ -44,7 +47,8 @@ run() {
   local name="$1" n="$2"
   shift 2
   if [ ! -f "$out/$name.h5" ]; then
-    "$root/build/flag-sim" run --quiet --frames "$n" -o "$out/$name.h5" "$@" >"$out/$name.log" 2>&1 || true
+    "$root/build/flag-sim" run --quiet --frames "$n" -o "$out/$name.h5" "$@" ${extra[@]+"${extra[@]}"} \
+      >"$out/$name.log" 2>&1 || true
   fi
   echo "$name: $(tail -n 1 "$out/$name.log")" >&2
 }
