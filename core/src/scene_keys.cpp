@@ -196,7 +196,8 @@ std::string keys_reference() {
       head += " (a string)";
     } else if (it != read.end()) {
       const SceneKey& k = it->second;
-      head += k.given || k.value.empty() ? " (no default)" : " = " + k.value;
+      // Optional keys have no value when absent (their meaning says what then).
+      head += k.given ? " (no default)" : k.value.empty() ? " (optional)" : " = " + k.value;
       head += fmt::format(" ({}{}{})", k.unit, k.unit.empty() ? "" : "; ", k.range);
     }
     out += fmt::format("  {}\n      {}\n", head, m.meaning);
