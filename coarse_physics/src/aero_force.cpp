@@ -129,6 +129,18 @@ void AeroForce::begin_frame(double time_s, std::span<const Vec3> x_m) {
   lanes::split(air_m_s_, work_.air);
 }
 
+bool AeroForce::set_wind_drift(const WindField::Drift& drift, double time_s,
+                               std::span<const Vec3> x_m) {
+  field_.set_drift(drift);
+  if (field_.steady()) {  // the one velocity everywhere, as the constructor sets it
+    air_m_s_.assign(air_m_s_.size(), drift.mean_m_s);
+    lanes::split(air_m_s_, work_.air);
+  } else {
+    begin_frame(time_s, x_m);
+  }
+  return true;
+}
+
 template <typename Visit>
 void AeroForce::for_each_triangle(Visit&& visit) const {
   const int rows = lattice_.rows, cols = lattice_.cols;

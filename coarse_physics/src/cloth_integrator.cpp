@@ -15,6 +15,19 @@ double ClothIntegrator::kinetic_energy() const {
   return total;
 }
 
+std::optional<WindField::Drift> ClothIntegrator::wind_drift() const {
+  for (const std::unique_ptr<ForceTerm>& term : force_terms())
+    if (const WindField* field = term->wind_field()) return field->drift();
+  return std::nullopt;
+}
+
+bool ClothIntegrator::set_wind_drift(const WindField::Drift& drift) {
+  const ClothState& s = state();
+  for (const std::unique_ptr<ForceTerm>& term : force_terms())
+    if (term->set_wind_drift(drift, s.time_s, s.x_m)) return true;
+  return false;
+}
+
 std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene) {
   switch (scene.solver.backend) {
     case Backend::kBullet:

@@ -27,7 +27,7 @@ double von_karman(double kl) {
 }  // namespace
 
 WindField::WindField(const Wind& wind, std::uint64_t seed)
-    : mean_m_s_(wind.velocity_m_s), gusts_(wind.gusts) {
+    : mean_m_s_(wind.velocity_m_s), bound_mean_m_s_(wind.velocity_m_s.norm()), gusts_(wind.gusts) {
   if (!wind.turbulence || wind.turbulence->intensity == 0.0) return;
   const double sigma = wind.turbulence->intensity * wind.velocity_m_s.norm();
   sigma_m_s_ = sigma;
@@ -69,14 +69,27 @@ Vec3 WindField::velocity(const Vec3& x_m, double time_s) const {
   if (gusts_)
     u *= 1.0 + gusts_->amplitude * std::sin(2.0 * std::numbers::pi * time_s / gusts_->period_s);
   if (modes_.empty()) return u;
-  const Vec3 carried = x_m - time_s * mean_m_s_;  // frozen turbulence moves with the mean wind
+  // Frozen turbulence moves with the mean wind (x - U t while it never changed).
+  const Vec3 carried = x_m - (offset_m_ + (time_s - since_s_) * mean_m_s_);
   for (const Mode& mode : modes_)
     u += std::cos(mode.wavevector.dot(carried) + mode.phase) * mode.amplitude;
   return u;
 }
 
+void WindField::set_drift(const Drift& drift) {
+  mean_m_s_ = drift.mean_m_s;
+  offset_m_ = drift.offset_m;
+  since_s_ = drift.since_s;
+}
+
+WindField::Drift WindField::with_mean(const Drift& drift, const Vec3& mean_m_s, double time_s) {
+  return {mean_m_s, drift.offset_m + (time_s - drift.since_s) * drift.mean_m_s, time_s};
+}
+
 double WindField::speed_bound_m_s() const {
-  return mean_m_s_.norm() * (1.0 + (gusts_ ? std::abs(gusts_->amplitude) : 0.0)) +
+  // The scene's wind, not the present one: the substeps were sized for it
+  // (Simulation::set_wind refuses a faster one).
+  return bound_mean_m_s_ * (1.0 + (gusts_ ? std::abs(gusts_->amplitude) : 0.0)) +
          4.0 * std::sqrt(3.0) * sigma_m_s_;
 }
 

@@ -49,12 +49,54 @@ void check_state_size(std::string_view part, std::size_t size, std::size_t expec
                                 size, expected));
 }
 
-// Checks and sets the physics part of a state.
-void set_physics_state(physics::ClothIntegrator& physics, const physics::ClothState& state) {
+// Checks and sets the physics part of a state, and its wind (a state
+// without one leaves the wind as it is).
+void set_physics_state(physics::ClothIntegrator& physics, const SimulationState& state) {
   const std::size_t n = physics.state().x_m.size();
-  check_state_size("the physics positions", state.x_m.size(), n);
-  check_state_size("the physics velocities", state.v_m_s.size(), n);
-  physics.set_state(state);
+  check_state_size("the physics positions", state.physics.x_m.size(), n);
+  check_state_size("the physics velocities", state.physics.v_m_s.size(), n);
+  physics.set_state(state.physics);
+  if (state.wind && physics.wind_drift()) physics.set_wind_drift(*state.wind);
+}
+
+// The physics' state with its wind.
+SimulationState physics_state(int frame, const physics::ClothIntegrator& physics) {
+  return {frame, physics.state(), {}, {}, {}, physics.wind_drift()};
+}
+
+// The wind of `physics`, its field (the scene's speed), or nullptr without [wind].
+const physics::WindField* wind_field_of(const physics::ClothIntegrator& physics) {
+  for (const std::unique_ptr<physics::ForceTerm>& term : physics.force_terms())
+    if (const physics::WindField* field = term->wind_field()) return field;
+  return nullptr;
+}
+
+std::optional<Vec3> wind_of(const physics::ClothIntegrator& physics) {
+  const physics::WindField* field = wind_field_of(physics);
+  return field ? std::optional<Vec3>(field->drift().mean_m_s) : std::nullopt;
+}
+
+void set_wind_of(physics::ClothIntegrator& physics, const Vec3& velocity_m_s) {
+  const physics::WindField* field = wind_field_of(physics);
+  if (!field)
+    throw UserError(
+        "set_wind: the scene has no [wind]; give it one (its velocity is the fastest wind the "
+        "stepping is sized for)");
+  if (!velocity_m_s.allFinite())
+    throw UserError("set_wind: expected a finite velocity [x, y, z] in m/s");
+  // The substeps (and XPBD's, Bullet's) were sized for the scene's wind.
+  const double limit = field->scene_speed_m_s();
+  if (velocity_m_s.norm() > limit * (1.0 + 1e-12))
+    throw UserError(fmt::format(
+        "set_wind: {:g} m/s is faster than the scene's wind.velocity ({:g} m/s), which the "
+        "stepping is sized for; start from a scene whose wind is the fastest you will set",
+        velocity_m_s.norm(), limit));
+  const physics::WindField::Drift next =
+      physics::WindField::with_mean(field->drift(), velocity_m_s, physics.state().time_s);
+  if (!physics.set_wind_drift(next))
+    throw UserError(
+        "set_wind: wind.model = \"vortex\": its wake was shed in the scene's wind, the vortex "
+        "air cannot change during a run");
 }
 
 // The full-lattice modes (is_full_lattice): physics on every node.
@@ -75,11 +117,13 @@ class FullLatticeSimulation final : public Simulation {
   std::string stepping_summary() const override { return stepping_of(*physics_); }
   std::optional<std::string> physics_failure() const override { return physics_->failure(); }
   std::string physics_advice() const override { return physics_->divergence_advice(); }
-  SimulationState state() const override { return {frame_, physics_->state(), {}, {}, {}}; }
+  SimulationState state() const override { return physics_state(frame_, *physics_); }
   void set_state(const SimulationState& state) override {
-    set_physics_state(*physics_, state.physics);
+    set_physics_state(*physics_, state);
     frame_ = state.frame;
   }
+  std::optional<Vec3> wind() const override { return wind_of(*physics_); }
+  void set_wind(const Vec3& velocity_m_s) override { set_wind_of(*physics_, velocity_m_s); }
 
  private:
   std::unique_ptr<physics::ClothIntegrator> physics_;
@@ -289,12 +333,14 @@ class HybridSimulation final : public Simulation {
   std::optional<std::string> physics_failure() const override { return physics_->failure(); }
   std::string physics_advice() const override { return physics_->divergence_advice(); }
   SimulationState state() const override {
-    SimulationState state{frame_, physics_->state(), {}, {}, {}};
+    SimulationState state = physics_state(frame_, *physics_);
     dense_.save(state);
     return state;
   }
+  std::optional<Vec3> wind() const override { return wind_of(*physics_); }
+  void set_wind(const Vec3& velocity_m_s) override { set_wind_of(*physics_, velocity_m_s); }
   void set_state(const SimulationState& state) override {
-    set_physics_state(*physics_, state.physics);
+    set_physics_state(*physics_, state);
     dense_.restore(state);
     frame_ = state.frame;
     make_reachable();  // the nodes the last fill used: a function of the physics state
@@ -394,6 +440,10 @@ std::optional<std::string> wrinkle_resolution_note(const Scene& scene) {
       "lattice carries ({:.3g} m, 8 spacings): 3.5 will lay broader ones; a lattice of {} or more "
       "columns would carry them",
       wavelength_m, lattice.rows, lattice.cols, finest_m, columns);
+}
+
+void Simulation::set_wind(const Vec3& /*velocity_m_s*/) {
+  throw UserError("set_wind: infill mode has no wind (the corners follow the keyframes)");
 }
 
 std::unique_ptr<Simulation> make_simulation(const Scene& scene) {

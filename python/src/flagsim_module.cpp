@@ -14,6 +14,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -86,6 +87,7 @@ class PySimulation {
   /// divergence: the divergence is forgotten).
   void set_state(const py::dict& state);
   const hybrid::Simulation& simulation() const { return *simulation_; }
+  hybrid::Simulation& mutable_simulation() { return *simulation_; }
   std::pair<int, int> coarse_shape() const {
     const auto [rows, cols] = simulation_->coarse_indices();
     return {int(rows.size()), int(cols.size())};
@@ -170,7 +172,26 @@ py::dict PySimulation::state() const {
   if (!s.infill_memory.empty())
     out["infill_memory"] =
         py::array_t<double>(py::ssize_t(s.infill_memory.size()), s.infill_memory.data());
+  if (s.wind) {  // the mean wind and how far it has carried the turbulence (set_wind)
+    py::dict wind;
+    wind["velocity"] = py::array_t<double>(3, s.wind->mean_m_s.data());
+    wind["offset"] = py::array_t<double>(3, s.wind->offset_m.data());
+    wind["since"] = s.wind->since_s;
+    out["wind"] = wind;
+  }
   return out;
+}
+
+// A 3-vector of the state's wind dict.
+Vec3 wind_vector(const py::dict& wind, const char* key) {
+  if (!wind.contains(key)) throw UserError(std::string("set_state: 'wind' has no '") + key + "'");
+  const auto array =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(wind[key]);
+  if (!array || array.ndim() != 1 || array.size() != 3)
+    throw UserError(std::string("set_state: 'wind' '") + key + "' must have the shape [3]");
+  Vec3 v(array.data()[0], array.data()[1], array.data()[2]);
+  if (!v.allFinite()) throw UserError(std::string("set_state: 'wind' '") + key + "' is not finite");
+  return v;
 }
 
 void PySimulation::set_state(const py::dict& state) {
@@ -208,6 +229,12 @@ void PySimulation::set_state(const py::dict& state) {
       throw UserError("set_state: 'infill_memory' must be an array of shape [" +
                       std::to_string(now.infill_memory.size()) + "]");
     s.infill_memory.assign(memory.data(), memory.data() + memory.size());
+  }
+  if (state.contains("wind") && now.wind) {  // a state without one keeps the wind as it is
+    const py::dict wind = state["wind"].cast<py::dict>();
+    if (!wind.contains("since")) throw UserError("set_state: 'wind' has no 'since'");
+    s.wind = physics::WindField::Drift{wind_vector(wind, "velocity"), wind_vector(wind, "offset"),
+                                       wind["since"].cast<double>()};
   }
   simulation_->set_state(s);
   frame_ = frame;
@@ -304,6 +331,18 @@ PYBIND11_MODULE(_flagsim, m) {
                                return flagsim::python::node_view(s.simulation().coarse_positions(),
                                                                  rows, cols, self);
                              })
+      .def_property(
+          "wind",
+          [](const PySimulation& s) -> py::object {
+            const std::optional<flagsim::Vec3> wind = s.simulation().wind();
+            if (!wind) return py::none();
+            return py::array_t<double>(3, wind->data());
+          },
+          [](PySimulation& s, const std::array<double, 3>& v) {
+            s.mutable_simulation().set_wind(flagsim::Vec3(v[0], v[1], v[2]));
+          },
+          "The mean wind [x, y, z], m/s (None without [wind]); settable between steps, up to "
+          "the scene's wind speed")
       .def("state", &PySimulation::state)
       .def("set_state", &PySimulation::set_state, py::arg("state"))
       .def("run", &PySimulation::run, py::arg("path"), py::arg("quiet") = true);

@@ -176,6 +176,74 @@ TEST(SimulationState, AStateTakenGoesOnAsTheSimulationItWasTakenFrom) {
   }
 }
 
+// The wind settable between frames (issue 30, item 6).
+std::vector<Vec3> frames_after(Simulation& simulation, int frames) {
+  for (int f = 0; f < frames; ++f) simulation.advance_frame(nullptr);
+  return {simulation.positions().begin(), simulation.positions().end()};
+}
+
+TEST(SetWind, TheSameWindChangesNothingAndAnotherChangesTheMotionInEveryBackend) {
+  for (const char* mode : {"hybrid", "mass-spring", "xpbd", "implicit", "bullet"}) {
+    const Scene scene = default_at_33x49(
+        {std::string("scene.mode=\"") + mode + "\"", "flag.fine=[17,25]", "flag.coarse=[5,7]"});
+    const auto plain = make_simulation(scene);
+    const auto same = make_simulation(scene);
+    const auto calm = make_simulation(scene);
+    frames_after(*plain, 2);
+    frames_after(*same, 2);
+    frames_after(*calm, 2);
+    EXPECT_EQ(same->wind(), std::optional<Vec3>(Vec3(10.0, 0.0, 0.0))) << mode;
+    same->set_wind(Vec3(10.0, 0.0, 0.0));  // a steady wind: the same air, bit for bit
+    calm->set_wind(Vec3(2.0, 0.0, 0.0));
+    EXPECT_EQ(calm->wind(), std::optional<Vec3>(Vec3(2.0, 0.0, 0.0))) << mode;
+    const std::vector<Vec3> a = frames_after(*plain, 3), b = frames_after(*same, 3),
+                            c = frames_after(*calm, 3);
+    EXPECT_EQ(a, b) << mode;
+    EXPECT_NE(a, c) << mode;  // the air the cloth sees is the new one
+  }
+}
+
+TEST(SetWind, AStateCarriesTheWindAndTheTurbulenceItCarried) {
+  // Turbulence: the drift (the distance the wind has carried the frozen field)
+  // is part of the state; a second simulation set to it goes on bit for bit.
+  const Scene scene = default_at_33x49({"wind.turbulence.intensity=0.2"});
+  const auto first = make_simulation(scene);
+  frames_after(*first, 2);
+  first->set_wind(Vec3(6.0, 0.0, 1.0));
+  frames_after(*first, 2);
+  const SimulationState at4 = first->state();
+  ASSERT_TRUE(at4.wind.has_value());
+  EXPECT_EQ(at4.wind->mean_m_s, Vec3(6.0, 0.0, 1.0));
+  const std::vector<Vec3> on = frames_after(*first, 2);
+  const auto second = make_simulation(scene);
+  second->set_state(at4);
+  EXPECT_EQ(second->wind(), std::optional<Vec3>(Vec3(6.0, 0.0, 1.0)));
+  EXPECT_EQ(frames_after(*second, 2), on);
+}
+
+TEST(SetWind, WhatCannotChangeIsSaid) {
+  const auto message = [](Simulation& simulation, const Vec3& wind) {
+    try {
+      simulation.set_wind(wind);
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto faster = make_simulation(default_at_33x49());
+  EXPECT_EQ(message(*faster, Vec3(0.0, 0.0, 10.5)),
+            "set_wind: 10.5 m/s is faster than the scene's wind.velocity (10 m/s), which the "
+            "stepping is sized for; start from a scene whose wind is the fastest you will set");
+  EXPECT_EQ(faster->wind(), std::optional<Vec3>(Vec3(10.0, 0.0, 0.0)));  // unchanged
+  const auto calm = make_simulation(
+      parse_scene("[scene]\nmode = \"mass-spring\"\n[flag]\nfine = [5, 7]\n[gravity]\n", "s.toml"));
+  EXPECT_EQ(calm->wind(), std::nullopt);
+  EXPECT_TRUE(message(*calm, Vec3(1.0, 0.0, 0.0)).starts_with("set_wind: the scene has no [wind]"));
+  const auto vortex = make_simulation(default_at_33x49({"wind.model=\"vortex\""}));
+  EXPECT_TRUE(
+      message(*vortex, Vec3(5.0, 0.0, 0.0)).starts_with("set_wind: wind.model = \"vortex\""));
+}
+
 TEST(SimulationState, ASceneBuiltInCodeIsCheckedAndMayGoBeforeItsSimulation) {
   // A Scene is a plain struct: one built (or changed) in code is checked as a
   // file's is, and the simulation keeps what it needs of it (the infill mode

@@ -219,6 +219,45 @@ class State(unittest.TestCase):
                 self.assertEqual(sim.frame, 2)
 
 
+class Wind(unittest.TestCase):
+    """The wind settable between steps (issue 30): README's loop, state() keeps it."""
+
+    def test_a_loop_that_changes_the_wind_every_frame(self):
+        sim = flagsim.Simulation(None, overrides=SMALL)
+        np.testing.assert_array_equal(sim.wind, [10.0, 0.0, 0.0])
+        steady = flagsim.Simulation(None, overrides=SMALL)
+        for frame in range(6):
+            sim.wind = [10.0 - frame, 0.0, 0.0]
+            sim.step()
+            steady.step()
+        np.testing.assert_array_equal(sim.wind, [5.0, 0.0, 0.0])
+        self.assertGreater(np.abs(sim.positions - steady.positions).max(), 1e-4)
+
+    def test_the_state_keeps_the_wind(self):
+        sim = flagsim.Simulation(None, overrides={**SMALL, "wind.turbulence.intensity": 0.2})
+        sim.step(2)
+        sim.wind = [4.0, 0.0, 1.0]
+        sim.step(2)
+        saved = sim.state()
+        np.testing.assert_array_equal(saved["wind"]["velocity"], [4.0, 0.0, 1.0])
+        sim.step(2)
+        after = sim.positions.copy()
+        other = flagsim.Simulation(None, overrides={**SMALL, "wind.turbulence.intensity": 0.2})
+        other.set_state(saved)
+        np.testing.assert_array_equal(other.wind, [4.0, 0.0, 1.0])
+        other.step(2)
+        np.testing.assert_array_equal(other.positions, after)
+
+    def test_what_cannot_change_is_said(self):
+        sim = flagsim.Simulation(None, overrides=SMALL)
+        with self.assertRaisesRegex(ValueError, "faster than the scene's wind.velocity"):
+            sim.wind = [0.0, 0.0, 11.0]
+        calm = flagsim.Simulation("[scene]\nmode = 'mass-spring'\n[flag]\nfine = [5, 7]\n")
+        self.assertIsNone(calm.wind)
+        with self.assertRaisesRegex(ValueError, r"the scene has no \[wind\]"):
+            calm.wind = [1.0, 0.0, 0.0]
+
+
 class Infill(unittest.TestCase):
     def test_the_infill_alone_gives_the_hybrids_dense_frame(self):
         sim = flagsim.Simulation(None, overrides=SMALL)

@@ -77,6 +77,9 @@ class AeroForce final : public ForceTerm {
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                   std::span<Vec3> forces_n) const override;
   double velocity_rate_bound() const override;
+  const WindField* wind_field() const override { return &field_; }
+  bool set_wind_drift(const WindField::Drift& drift, double time_s,
+                      std::span<const Vec3> x_m) override;
   /// Keeps C_t = -d f_node / d v_node' = J_t / 9 of every triangle t (J_t its
   /// triangle_aero_velocity_jacobian; the same block for each of its 3 x 3 node
   /// pairs). kProjected keeps the symmetric part with negative eigenvalues

@@ -65,6 +65,7 @@ class BulletCloth final : public ClothIntegrator {
   double substep_s() const override { return frame_s_ / substeps_per_frame_; }
   void register_stages(StageTimes& times) override;
   void advance_frame(StageTimes* times) override;
+  std::span<const std::unique_ptr<ForceTerm>> force_terms() const override { return terms_; }
 
   /// Called by Bullet before each substep: pins and our force terms.
   void before_substep(double dt_s);

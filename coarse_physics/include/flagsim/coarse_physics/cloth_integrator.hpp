@@ -7,6 +7,7 @@
 // state, which starts as physics::initial_state.
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,16 @@ class ClothIntegrator {
   virtual std::string solver_summary() const { return {}; }
   /// Kinetic energy, J.
   double kinetic_energy() const;
+
+  /// The force terms the backend applies as forces (the wind among them).
+  virtual std::span<const std::unique_ptr<ForceTerm>> force_terms() const = 0;
+  /// The wind's mean and the turbulence's drift (wind_field.hpp); nullopt
+  /// without [wind]. Part of what a later frame depends on.
+  std::optional<WindField::Drift> wind_drift() const;
+  /// The wind takes `drift` from the next frame on (a new mean wind, or a
+  /// saved one); false without [wind], or where the air cannot change (the
+  /// vortex lattice's wake was shed in the old wind).
+  virtual bool set_wind_drift(const WindField::Drift& drift);
 };
 
 /// The integrator of `scene.solver.backend` for the scene's fine lattice.
@@ -69,6 +80,12 @@ class SpringDamperIntegrator final : public ClothIntegrator {
   double substep_s() const override { return solver_.substep_s(); }
   void register_stages(StageTimes& times) override { solver_.register_stages(times); }
   void advance_frame(StageTimes* times) override { solver_.advance_frame(state_, times); }
+  std::span<const std::unique_ptr<ForceTerm>> force_terms() const override {
+    return solver_.terms();
+  }
+  bool set_wind_drift(const WindField::Drift& drift) override {
+    return !solver_.has_vortex() && ClothIntegrator::set_wind_drift(drift);
+  }
 
  private:
   SpringDamperSolver solver_;

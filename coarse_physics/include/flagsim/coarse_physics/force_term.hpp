@@ -13,6 +13,7 @@
 #include <span>
 #include <string_view>
 
+#include "flagsim/coarse_physics/wind_field.hpp"
 #include "flagsim/core/vec3.hpp"
 
 namespace flagsim::physics {
@@ -50,6 +51,15 @@ class ForceTerm {
   virtual void add_stiffness_bound(std::span<double> /*row_sum_n_m*/) const {}
   /// Upper bound of ||d f_i / d v_i|| / m_i over the nodes, 1/s.
   virtual double velocity_rate_bound() const { return 0.0; }
+  /// The wind's term: its mean wind and the turbulence's drift (wind_field.hpp);
+  /// nullptr for every other term.
+  virtual const WindField* wind_field() const { return nullptr; }
+  /// The wind's term takes `drift` (a new mean wind, or a saved state) from the
+  /// next frame on, at positions x_m and time time_s; false for other terms.
+  virtual bool set_wind_drift(const WindField::Drift& /*drift*/, double /*time_s*/,
+                              std::span<const Vec3> /*x_m*/) {
+    return false;
+  }
 
   /// Evaluates and keeps the derivatives at (x, v) that the products below
   /// use (the implicit stepper calls it once per Newton iteration).

@@ -69,6 +69,7 @@ class ImplicitEuler final : public ClothIntegrator {
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
   void set_state(const ClothState& state) override { state_ = state; }
+  std::span<const std::unique_ptr<ForceTerm>> force_terms() const override { return terms_; }
   /// The explicit integrator's limit for the same cloth, s (for comparison:
   /// this stepper does not need it).
   double stable_substep_s() const override { return explicit_limit_s_; }

@@ -68,6 +68,8 @@ class SpringDamperSolver {
   double potential_energy(const ClothState& state) const;
   /// The force terms, in pipeline order (for tests and benchmarks).
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
+  /// wind.model = "vortex": the air is the vortex lattice's (its wake fixed to the scene's wind).
+  bool has_vortex() const { return vortex_ != nullptr; }
 
  private:
   ClothModel model_;

@@ -69,6 +69,7 @@ class Xpbd final : public ClothIntegrator {
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
   void set_state(const ClothState& state) override { state_ = state; }
+  std::span<const std::unique_ptr<ForceTerm>> force_terms() const override { return terms_; }
   /// The explicit terms' limit (the wind's), s; infinity if none bounds it.
   double stable_substep_s() const override { return stable_substep_s_; }
   int substeps_per_frame() const override { return substeps_; }

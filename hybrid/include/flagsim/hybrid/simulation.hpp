@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_state.hpp"
+#include "flagsim/coarse_physics/wind_field.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/named_number.hpp"
 #include "flagsim/core/scene.hpp"
@@ -31,6 +32,8 @@ struct SimulationState {
   /// m/s (its frame-to-frame velocities); empty in the full-lattice modes.
   std::vector<Vec3> dense_m, dense_v_m_s;
   std::vector<double> infill_memory;  ///< infill::InfillMethod::memory()
+  /// The wind's mean and the turbulence's drift (set_wind); nullopt without [wind].
+  std::optional<physics::WindField::Drift> wind;
 };
 
 class Simulation {
@@ -62,6 +65,14 @@ class Simulation {
   virtual std::string physics_advice() const { return {}; }
   /// What the summary line says about the stepping ("1001 substeps/frame of 3.3e-05 s").
   virtual std::string stepping_summary() const = 0;
+  /// The mean wind now, m/s; nullopt without [wind].
+  virtual std::optional<Vec3> wind() const { return std::nullopt; }
+  /// From the next frame on the mean wind is `velocity_m_s` (gusts and
+  /// turbulence, if any, ride on it; the turbulence carried on from where the
+  /// old wind took it). Throws UserError without [wind], in infill mode, for a
+  /// wind faster than the scene's wind.velocity (the substeps are sized for
+  /// that), or with wind.model = "vortex".
+  virtual void set_wind(const Vec3& velocity_m_s);
   /// A copy of the whole state after the last frame.
   virtual SimulationState state() const = 0;
   /// Continues from `state`, one that state() of a simulation of the same
