@@ -274,7 +274,9 @@ int run_command(const RunOptions& options) {
   }
   writer.finish(status);
 
-  const double ms_per_frame = 1000.0 * total_wall_s / std::max(1, writer.frames_written());
+  // The file's own figure (what `info` prints): the mean wall time of a
+  // written frame after the first (frame 0 is the initial state and the file's creation).
+  const double ms_per_frame = writer.ms_per_frame();
   // Rendered from the file, as `flag-sim render` would: the camera frames the
   // whole run, and the renderer never reaches into the simulation.
   std::string rendered;

@@ -321,6 +321,7 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
   }
   if (!ok)
     throw IoError(fmt::format("{}: writing frame {} failed (disk full?)", partial_path(), frames_));
+  if (frames_ > 0) wall_after_first_s_ += wall_s;  // as info averages it
   ++frames_;
   impl_->times.push_back(time_s);
   if (frames_ % flush_every_ == 0 && H5Fflush(impl_->file.get(), H5F_SCOPE_GLOBAL) < 0)

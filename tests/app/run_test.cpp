@@ -61,6 +61,23 @@ TEST(Run, DefaultSceneWritesTheContractFile) {
   EXPECT_GT(reader.number_attribute("substeps_per_frame", 0), 1);
 }
 
+// Issue 33, item 9: run's summary and info give one ms/frame for one file
+// (the mean wall time of a written frame after the initial one).
+TEST(Run, ItsMsPerFrameIsTheOneInfoReads) {
+  TempDir dir;
+  const ProcessResult run = run_flag_sim(
+      {"run", "--set", "flag.fine=[17,25]", "--frames", "8", "-o", "r.h5", "--quiet"}, dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const ProcessResult info = run_flag_sim({"info", "r.h5"}, dir.path());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const std::size_t at = info.out.find("timing    ");
+  ASSERT_NE(at, std::string::npos) << info.out;
+  const std::string figure =
+      info.out.substr(at + 10, info.out.find(" ms/frame", at) - at - 10);  // "2.54"
+  EXPECT_NE(run.out.find(", " + figure + " ms/frame,"), std::string::npos)
+      << run.out << " against info's " << figure;
+}
+
 TEST(Run, SameSceneAndSeedGiveIdenticalPositions) {
   TempDir dir;
   dir.write("windy.toml", kWindy);

@@ -103,6 +103,11 @@ class FrameWriter {
   std::optional<std::string> out_of_room() const;
 
   int frames_written() const { return frames_; }
+  /// The mean of /stats/wall_seconds over the written frames after the first
+  /// (frame 0 is the initial state), ms: the ms/frame `flag-sim info` reports.
+  double ms_per_frame() const {
+    return frames_ > 1 ? 1000.0 * wall_after_first_s_ / double(frames_ - 1) : 0.0;
+  }
   const std::string& path() const { return path_; }
   std::string partial_path() const { return path_ + ".partial"; }
 
@@ -114,6 +119,7 @@ class FrameWriter {
   Lattice lattice_;
   int flush_every_;
   int frames_ = 0;
+  double wall_after_first_s_ = 0.0;  ///< the wall_seconds written after frame 0
   int trajectory_frames_ = 0;
 };
 
