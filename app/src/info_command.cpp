@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iterator>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
@@ -35,6 +36,8 @@ struct RunSummary {
   bool has_infill = false;
   int converged_frames = 0, infill_frames = 0;
   double median_iterations = 0.0, median_offset_m = 0.0, max_offset_m = 0.0;
+  int checkpoint_frame = -1;  ///< the frame /checkpoint holds the state of; -1: none
+  double fps = 0.0;
 };
 
 double median(std::vector<double> values) {
@@ -58,6 +61,9 @@ RunSummary summarise(const std::string& path) {
   s.frames = reader.frame_count();
   s.dense = reader.dense();
   s.trajectory_frames = reader.trajectory_frames();
+  if (const std::optional<data::Checkpoint> checkpoint = reader.checkpoint())
+    s.checkpoint_frame = checkpoint->frame;
+  s.fps = reader.number_attribute("fps", 0.0);
   const std::vector<double> times = reader.times_s();
   if (!times.empty()) {
     s.t_first_s = times.front();
@@ -145,6 +151,15 @@ std::string text_of(const RunSummary& s) {
         "counterparts {:.1f} mm off (median), {:.1f} mm (max)\n",
         s.converged_frames, s.infill_frames, s.median_iterations, 1e3 * s.median_offset_m,
         1e3 * s.max_offset_m);
+  if (s.checkpoint_frame >= 0 && s.fps > 0.0)
+    fmt::format_to(out,
+                   "resume    its state at frame {} (t = {:.4g} s): `flag-sim run --resume {} "
+                   "--frames N` continues the run\n",
+                   s.checkpoint_frame, s.checkpoint_frame / s.fps, s.file);
+  else if (s.status != "diverged")
+    fmt::format_to(out,
+                   "resume    no checkpoint (output.checkpoint = false, or an older flag-sim): not "
+                   "to be continued\n");
   if (s.has_timing) {
     std::string split;
     for (const auto& [name, ms] : s.stage_ms)
@@ -209,6 +224,8 @@ std::string json_of(const RunSummary& s) {
                       "\"max\": {}}}}}",
                       s.converged_frames, s.infill_frames, json_number(s.median_iterations),
                       json_number(s.median_offset_m), json_number(s.max_offset_m)));
+  field("checkpoint_frame",
+        s.checkpoint_frame >= 0 ? fmt::format("{}", s.checkpoint_frame) : "null");
   if (s.has_timing) {
     std::vector<std::string> stages;
     for (const auto& [name, ms] : s.stage_ms)

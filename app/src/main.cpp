@@ -153,6 +153,10 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("--texture", run.render_texture, "PNG for --style textured");
   run_cmd->add_option("--color", run.render_color, "Colour the rendered cloth by strain or speed");
   run_cmd->add_flag("-q,--quiet", run.quiet, "No progress line, only the summary");
+  run_cmd->add_option(
+      "--resume", run.resume_input,
+      "Continue the run in OUT.h5 (interrupted or complete) to its scene's "
+      "duration, or to --frames N / --set scene.duration=T; -o writes it elsewhere");
 
   flagsim::app::RunOptions refine;
   CLI::App* refine_cmd = cli.add_subcommand(

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <tuple>
@@ -86,6 +87,129 @@ void check_refine_override(const Override& set) {
       set.typed, printable(std::string(key))));
 }
 
+// The state as a checkpoint's parts (run --resume): float64 as the simulation
+// holds it, each part a view of `state` (which must outlive the checkpoint).
+std::span<const double> flat(std::span<const Vec3> vectors) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  return {vectors.empty() ? nullptr : vectors.front().data(), 3 * vectors.size()};
+}
+
+// A file without dense frames (output.dense = false) keeps no dense state
+// either: resume fills it again from the coarse trajectory, as refine does.
+data::Checkpoint checkpoint_of(const hybrid::SimulationState& state, int written_frames,
+                               int trajectory_frames) {
+  data::Checkpoint checkpoint;
+  checkpoint.frame = state.frame;
+  checkpoint.written_frames = written_frames;
+  checkpoint.trajectory_frames = trajectory_frames;
+  checkpoint.parts = {{"physics_positions", flat(state.physics.x_m), "m"},
+                      {"physics_velocities", flat(state.physics.v_m_s), "m/s"},
+                      {"physics_time", {&state.physics.time_s, 1}, "s"}};
+  if (trajectory_frames == 0) {
+    checkpoint.parts.push_back({"dense_positions", flat(state.dense_m), "m"});
+    checkpoint.parts.push_back({"dense_velocities", flat(state.dense_v_m_s), "m/s"});
+    checkpoint.parts.push_back({"infill_memory", state.infill_memory, "m"});
+  }
+  if (const auto& wind = state.wind) {
+    checkpoint.parts.push_back({"wind_mean", flat({&wind->mean_m_s, 1}), "m/s"});
+    checkpoint.parts.push_back({"wind_offset", flat({&wind->offset_m, 1}), "m"});
+    checkpoint.parts.push_back({"wind_since", {&wind->since_s, 1}, "s"});
+  }
+  return checkpoint;
+}
+
+hybrid::SimulationState state_of(const data::Checkpoint& checkpoint, const std::string& file) {
+  const auto values = [&](const char* name, std::size_t multiple) {
+    const data::Checkpoint::Part* part = checkpoint.part(name);
+    if (!part || part->values.size() % multiple != 0)
+      throw UserError(fmt::format("{}: /checkpoint/{} is {}", file, name,
+                                  part ? "damaged (its length)" : "missing"));
+    if (!std::all_of(part->values.begin(), part->values.end(),
+                     [](double v) { return std::isfinite(v); }))
+      throw UserError(
+          fmt::format("{}: /checkpoint/{} is damaged (a value not finite)", file, name));
+    return part->values;
+  };
+  const auto vectors = [&](const char* name) {
+    const std::span<const double> flat_values = values(name, 3);
+    std::vector<Vec3> result(flat_values.size() / 3);
+    for (std::size_t i = 0; i < result.size(); ++i)
+      result[i] = Vec3(flat_values[3 * i], flat_values[3 * i + 1], flat_values[3 * i + 2]);
+    return result;
+  };
+  const auto scalar = [&](const char* name) {
+    const std::span<const double> one = values(name, 1);
+    if (one.size() != 1)
+      throw UserError(fmt::format("{}: /checkpoint/{} is damaged (its length)", file, name));
+    return one[0];
+  };
+  hybrid::SimulationState state;
+  state.frame = checkpoint.frame;
+  state.physics.x_m = vectors("physics_positions");
+  state.physics.v_m_s = vectors("physics_velocities");
+  state.physics.time_s = scalar("physics_time");
+  if (checkpoint.trajectory_frames == 0) {  // else the coarse trajectory gives them (resume_state)
+    state.dense_m = vectors("dense_positions");
+    state.dense_v_m_s = vectors("dense_velocities");
+    const std::span<const double> memory = values("infill_memory", 1);
+    state.infill_memory.assign(memory.begin(), memory.end());
+  }
+  if (checkpoint.part("wind_mean")) {
+    const std::vector<Vec3> mean = vectors("wind_mean"), offset = vectors("wind_offset");
+    if (mean.size() != 1 || offset.size() != 1)
+      throw UserError(fmt::format("{}: /checkpoint/wind_* is damaged (its length)", file));
+    state.wind = physics::WindField::Drift{mean[0], offset[0], scalar("wind_since")};
+  }
+  return state;
+}
+
+// The state run --resume continues from. A coarse-only file's dense lattice
+// is the infill's over the stored trajectory, replayed to the checkpoint's
+// frame (bit for bit what the run held, as refine's frames are).
+hybrid::SimulationState resume_state(const Scene& scene, const data::Checkpoint& checkpoint,
+                                     const data::OutputReader& source, const std::string& file) {
+  hybrid::SimulationState state = state_of(checkpoint, file);
+  if (checkpoint.trajectory_frames == 0) return state;
+  if (checkpoint.trajectory_frames != checkpoint.frame + 1 ||
+      source.trajectory_frames() < checkpoint.trajectory_frames)
+    throw UserError(
+        fmt::format("{}: /checkpoint names {} coarse trajectory frames, the file holds {}", file,
+                    checkpoint.trajectory_frames, source.trajectory_frames()));
+  const std::unique_ptr<hybrid::Simulation> replay = hybrid::make_replay(
+      scene,
+      [&source](int frame, std::vector<Vec3>& out) { out = source.coarse_trajectory(frame); });
+  for (int frame = 1; frame <= checkpoint.frame; ++frame) replay->advance_frame(nullptr);
+  hybrid::SimulationState dense = replay->state();
+  state.dense_m = std::move(dense.dense_m);
+  state.dense_v_m_s = std::move(dense.dense_v_m_s);
+  state.infill_memory = std::move(dense.infill_memory);
+  return state;
+}
+
+// What `run --resume` takes besides the file: the duration (--frames, --set
+// scene.duration), -o, --quiet and --render; the rest is the run's own.
+void check_resume_options(const RunOptions& options) {
+  const auto refuse = [&](const std::string& what) {
+    throw UserError(fmt::format(
+        "{}: run --resume continues the run in {} with its own scene; it takes --frames, --set "
+        "scene.duration=T, -o, --quiet and --render (to run another scene, leave out --resume)",
+        what, options.resume_input));
+  };
+  if (!options.scene_path.empty()) refuse(options.scene_path);
+  if (options.mode) refuse("--mode " + *options.mode);
+  if (options.seed) refuse("--seed " + *options.seed);
+  for (const std::string& set : options.sets)
+    if (set.substr(0, set.find('=')) != "scene.duration") refuse("--set " + set);
+  if (options.resume_input.size() > 8 && options.resume_input.ends_with(".partial"))
+    throw UserError(fmt::format(
+        "{}: the unfinished file of a run that was killed (or is still running); when no run "
+        "writes it, rename it to {} and continue that",
+        options.resume_input, options.resume_input.substr(0, options.resume_input.size() - 8)));
+}
+
+// Wall time between two checkpoints written before flushes (run --resume).
+constexpr double kCheckpointSeconds = 1.0;
+
 // A coarse-trajectory file's state, as its status attribute says.
 RunStatus status_of(const data::OutputReader& source) {
   const std::optional<RunState> state = value_in(kRunStateNames, source.attribute("status"));
@@ -98,7 +222,25 @@ int run_command(const RunOptions& options) {
   if (options.frames && *options.frames < 1)
     throw UserError(fmt::format("--frames {}: expected at least 1 frame", *options.frames));
   const bool refining = !options.refine_input.empty();
-  std::optional<data::OutputReader> source;  // refine's input
+  const bool resuming = !options.resume_input.empty();
+  std::optional<data::OutputReader> source;  // refine's or resume's input
+  std::optional<data::Checkpoint> resume_point;
+  if (resuming) {
+    check_resume_options(options);
+    source.emplace(options.resume_input);
+    if (const RunStatus ran = status_of(*source); ran.diverged())
+      throw UserError(fmt::format(
+          "{}: its run diverged ({}); continuing it would diverge again: change the scene and "
+          "run it again",
+          options.resume_input, ran.reason));
+    resume_point = source->checkpoint();
+    if (!resume_point)
+      throw UserError(fmt::format(
+          "{}: holds no checkpoint to continue from (its scene has output.checkpoint = false, "
+          "its run was stopped before its first flush, or an older flag-sim wrote it); run its "
+          "scene again with the longer duration",
+          options.resume_input));
+  }
   if (refining) {
     source.emplace(options.refine_input);
     if (source->trajectory_frames() == 0)
@@ -113,11 +255,34 @@ int run_command(const RunOptions& options) {
     overrides.push_back({"output.dense=true", "refine"});
   }
   const Scene scene =
-      refining ? parse_scene(source->attribute("scene"), options.refine_input, overrides)
+      resuming   ? parse_scene(source->attribute("scene"), options.resume_input, overrides)
+      : refining ? parse_scene(source->attribute("scene"), options.refine_input, overrides)
       : options.scene_text
           ? parse_scene(*options.scene_text,
                         options.scene_path.empty() ? "<scene text>" : options.scene_path, overrides)
           : load_scene(options.scene_path, overrides);
+  // run --resume: the frames after the checkpoint's, to the (new) duration.
+  const int first_frame = resuming ? resume_point->frame + 1 : 0;
+  if (resuming) {
+    // scene.frames (run --frames) wins over scene.duration: a --set of it would change nothing.
+    const auto frames_at = [&](const char* duration) {
+      return parse_scene(source->attribute("scene"), options.resume_input,
+                         std::vector<std::string>{duration})
+          .simulated_frames();
+    };
+    const bool fixed_frames = frames_at("scene.duration=1") == frames_at("scene.duration=2");
+    if (fixed_frames && !options.sets.empty())
+      throw UserError(fmt::format(
+          "--set {}: the scene in {} fixes its length with scene.frames (run --frames); "
+          "continue it with --frames N",
+          options.sets.front(), options.resume_input));
+    if (scene.simulated_frames() <= first_frame)
+      throw UserError(fmt::format(
+          "{}: already holds frames 0 to {} (t = 0 .. {:.4g} s) of its {}-frame scene; give "
+          "--frames or --set scene.duration=T beyond them to continue it",
+          options.resume_input, first_frame - 1, (first_frame - 1) / scene.fps,
+          scene.simulated_frames()));
+  }
   if (refining && scene.mode != Mode::kHybrid)
     throw UserError(fmt::format("{}: its scene is in {} mode; refine takes a hybrid run's file",
                                 options.refine_input, to_string(scene.mode)));
@@ -139,9 +304,16 @@ int run_command(const RunOptions& options) {
   }
 
   // Nothing the run writes may be a file it reads, or another file it writes.
-  const std::string output_path = output_path_of(options, scene);
+  // run --resume writes back to its file unless -o says otherwise: a new file
+  // OUT.h5.partial with the old frames and the new, renamed over OUT.h5 at the
+  // end, so OUT.h5 stays as it was until then.
+  const std::string output_path = resuming && options.output_path.empty()
+                                      ? options.resume_input
+                                      : output_path_of(options, scene);
   FileRoles files;
   files.input(options.scene_path, "the scene");
+  if (resuming && !same_file(options.resume_input, output_path))
+    files.input(options.resume_input, "the run to continue");
   if (refining) files.input(options.refine_input, "the coarse trajectory");
   if (options.render_texture) files.input(*options.render_texture, "--texture");
   if (scene.render) files.input(scene.render->texture, "render.texture");
@@ -162,6 +334,14 @@ int run_command(const RunOptions& options) {
                                        out = source->coarse_trajectory(frame);
                                      })
                : hybrid::make_simulation(scene);
+  if (resuming) {
+    try {
+      simulation->set_state(resume_state(scene, *resume_point, *source, options.resume_input));
+    } catch (const UserError& e) {
+      throw UserError(fmt::format("{}: its checkpoint does not fit its scene ({})",
+                                  options.resume_input, e.what()));
+    }
+  }
   if (InterruptGuard::requested())
     throw Interrupted("run stopped by a signal during its set-up; nothing was written");
   StageTimes times;
@@ -195,19 +375,45 @@ int run_command(const RunOptions& options) {
   double worst_residual = 0.0;
   const Lattice& lattice = simulation->lattice();
   data::FrameWriter writer(output_path, lattice, info, scene.output.flush_every);
+  double max_strain_seen = 0.0, total_wall_s = 0.0;
+  if (resuming) {  // the frames up to the checkpoint's, as they are, and the checkpoint
+    try {
+      writer.copy_frames(options.resume_input, resume_point->written_frames,
+                         resume_point->trajectory_frames);
+    } catch (const UserError&) {  // a damaged frame: nothing is left behind
+      writer.discard();
+      throw;
+    }
+    writer.write_checkpoint(*resume_point);
+    const auto first = [&](const char* name) {
+      std::vector<double> values = source->stat(name);
+      values.resize(std::min(values.size(), std::size_t(resume_point->written_frames)));
+      return values;
+    };
+    for (double strain : first("max_strain")) max_strain_seen = std::max(max_strain_seen, strain);
+    if (has_infill) {
+      const std::vector<double> converged = first("infill_converged");
+      const std::vector<double> residual = first("infill_residual");
+      for (double c : converged) unconverged_frames += c == 0.0 ? 1 : 0;
+      for (double r : residual) worst_residual = std::max(worst_residual, r);
+    }
+  }
   // refine: the frames the trajectory holds (fewer than the scene's when its run stopped early).
   const int frames = refining ? std::min(scene.simulated_frames(), source->trajectory_frames())
                               : scene.simulated_frames();
   Progress progress(Progress::wanted(options.quiet), frames);
   std::vector<float> node_strain(scene.output.has_field("strain") ? lattice.node_count() : 0);
-  double max_strain_seen = 0.0, total_wall_s = 0.0;
   auto since_write = std::chrono::steady_clock::now();
   RunStatus status;  // complete unless a frame says otherwise
   bool out_of_room = false;
-  for (int frame = 0; frame < frames; ++frame) {
+  bool cut_short = false;        // a frame cut short by a signal: the simulation is not at a frame
+  bool checkpointed = resuming;  // the resumed file's checkpoint is copied
+  auto last_checkpoint = std::chrono::steady_clock::now();
+  for (int frame = first_frame; frame < frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     if (frame > 0) simulation->advance_frame(&times);
     if (frame > 0 && InterruptGuard::requested()) {  // the frame was cut short: not written
+      cut_short = true;
       status = {RunState::kInterrupted,
                 fmt::format("signal received during frame {} (t = {:.4g} s), which is not written",
                             frame, frame / scene.fps)};
@@ -246,6 +452,20 @@ int run_command(const RunOptions& options) {
                              seconds_since(since_write),
                              simulation->kinetic_energy_j(),
                              series};
+      // The state this frame ends in, for a run that stops inside a later frame
+      // (a signal, SIGKILL): at the first frame (which fixes where its datasets
+      // lie in the file), then before a flush once a second of wall time has
+      // passed (1.2 MB on the default scene takes 1-4 ms), and at the end.
+      if (scene.output.checkpoint && !refining &&
+          (!checkpointed ||
+           (writer.flushes_next() && seconds_since(last_checkpoint) >= kCheckpointSeconds))) {
+        checkpointed = true;
+        last_checkpoint = std::chrono::steady_clock::now();
+        ScopedStageTimer timer(times, output_stage);
+        const hybrid::SimulationState now = simulation->state();
+        writer.write_checkpoint(
+            checkpoint_of(now, writer.frames_written() + 1, scene.output.dense ? 0 : frame + 1));
+      }
       // Frame times are n / fps exactly, not the sum of the substeps.
       writer.write_frame(
           frame / scene.fps,
@@ -255,7 +475,7 @@ int run_command(const RunOptions& options) {
       since_write = std::chrono::steady_clock::now();
     }
     total_wall_s += seconds_since(frame_start);
-    progress.update(frame, frame / scene.fps, 1000.0 * total_wall_s / (frame + 1));
+    progress.update(frame, frame / scene.fps, 1000.0 * total_wall_s / (frame - first_frame + 1));
     if (InterruptGuard::requested() && frame + 1 < frames) {
       status = {RunState::kInterrupted, fmt::format("signal received after frame {} (t = {:.4g} s)",
                                                     frame, frame / scene.fps)};
@@ -271,6 +491,16 @@ int run_command(const RunOptions& options) {
   } else if (status.complete()) {  // every file says why it ended, a complete one too
     status.reason = fmt::format("all {} frames simulated (t = 0 .. {:.4g} s), {} written", frames,
                                 (frames - 1) / scene.fps, writer.frames_written());
+    if (resuming)
+      status.reason +=
+          fmt::format("; frames {} on by run --resume of {}", first_frame, options.resume_input);
+  }
+  // The state the run ends in, when it ended at a whole frame.
+  if (scene.output.checkpoint && !refining && !cut_short && !out_of_room && !status.diverged()) {
+    const hybrid::SimulationState end = simulation->state();
+    if (end.frame >= first_frame)  // else the checkpoint copied from the resumed file stands
+      writer.write_checkpoint(
+          checkpoint_of(end, writer.frames_written(), scene.output.dense ? 0 : end.frame + 1));
   }
   writer.finish(status);
 

@@ -28,6 +28,10 @@ struct RunOptions {
   /// ([output] dense = false) instead of a simulation; its scene is IN's
   /// attribute `scene`, with `sets` of the infill's and output's keys only.
   std::string refine_input;
+  /// `flag-sim run --resume OUT.h5`: continues the run in OUT.h5 from its
+  /// /checkpoint to its scene's duration (`frames`, or `sets` of
+  /// scene.duration only); written to `output_path`, or back to OUT.h5.
+  std::string resume_input;
   /// false: no summary line and notes on standard output (a refine that
   /// render or export makes for themselves, dense_input.hpp).
   bool summary = true;

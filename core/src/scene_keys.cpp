@@ -84,6 +84,9 @@ constexpr KeyMeaning kMeanings[] = {
     {"output.dense",
      "false (hybrid): keep the coarse trajectory only; flag-sim refine recomputes the frames"},
     {"output.compression", "HDF5 deflate level of the per-node datasets, 0 (none) to 9"},
+    {"output.checkpoint",
+     "keep the state (/checkpoint) at the first frame, once a second and at the end, for run "
+     "--resume"},
     {"render.style", "how render draws the frames: wireframe, shaded or textured"},
     {"render.size", "render's image size"},
     {"render.texture", "PNG for the textured style"},

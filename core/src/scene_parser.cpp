@@ -78,6 +78,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "output.fields",
                                          "output.dense",
                                          "output.compression",
+                                         "output.checkpoint",
                                          "render.style",
                                          "render.size",
                                          "render.texture",
@@ -404,6 +405,7 @@ void read_run_tables(TableReader& root, Scene& scene) {
     scene.output.fields = in.choice_set("fields", scene.output.fields, {"strain", "velocity"});
     scene.output.dense = in.boolean("dense", scene.output.dense);
     scene.output.compression = int(in.integer("compression", scene.output.compression, 0, 9));
+    scene.output.checkpoint = in.boolean("checkpoint", scene.output.checkpoint);
     in.finish(kAllKeys);
   }
   if (const toml::table* t = root.subtable("render")) {

@@ -99,6 +99,8 @@ struct FrameWriter::Impl {
       wall_seconds, kinetic;
   h5::Handle coarse_positions, trajectory;
   std::vector<h5::Handle> series;
+  std::vector<std::string> series_names;              ///< RunInfo::series' names, as `series`
+  h5::Handle checkpoint;                              ///< /checkpoint, once written
   std::vector<float> position_buffer, coarse_buffer;  ///< float32 xyz, as stored
   std::vector<double> times;
   std::vector<std::string> fields;  ///< RunInfo::fields
@@ -197,6 +199,7 @@ FrameWriter::FrameWriter(std::string path, const Lattice& lattice, const RunInfo
   for (const RunInfo::Series& series : info.series) {
     impl_->series.push_back(
         make_series(stats.get(), series.name.c_str(), H5T_IEEE_F64LE, {}, series.units.c_str()));
+    impl_->series_names.push_back(series.name);
     ok = ok && impl_->series.back().valid();
   }
   if (!info.coarse_rows.empty()) ok = ok && write_coarse_layout(root, info);
@@ -255,6 +258,13 @@ bool FrameWriter::write_coarse_layout(hid_t root, const RunInfo& info) {
 }
 
 FrameWriter::~FrameWriter() = default;  // an unfinished run leaves its .partial file
+
+void FrameWriter::discard() noexcept {
+  const CreatedDirectories directories = std::move(impl_->directories);
+  impl_.reset();  // closes every dataset and the file
+  std::error_code ec;
+  fs::remove(partial_path(), ec);
+}  // the directories made for it go too, now empty
 
 namespace {
 
@@ -354,6 +364,151 @@ std::optional<std::string> FrameWriter::out_of_room() const {
   const std::uintmax_t pending = std::uintmax_t(frames_ % flush_every_) + 1;
   const std::uintmax_t need = 2 * pending * frame_bytes + (std::uintmax_t(1) << 20);
   return no_room_for(partial_path(), need);
+}
+
+void FrameWriter::write_checkpoint(const Checkpoint& checkpoint) {
+  const hid_t root = impl_->file.get();
+  bool ok = true;
+  if (!impl_->checkpoint.valid()) {
+    impl_->checkpoint = make_group(root, "checkpoint");
+    ok = impl_->checkpoint.valid() &&
+         h5::write_string_attribute(
+             impl_->checkpoint.get(), "meaning",
+             "the simulation's state after frame `frame`, float64 as it held it: what `flag-sim "
+             "run --resume` continues from");
+  }
+  const hid_t group = impl_->checkpoint.get();
+  for (const Checkpoint::Part& part : checkpoint.parts) {
+    if (!ok) break;
+    const hsize_t count = part.values.size();
+    h5::Handle set;
+    if (H5Lexists(group, part.name.c_str(), H5P_DEFAULT) > 0) {
+      set = h5::dataset(H5Dopen2(group, part.name.c_str(), H5P_DEFAULT));
+      h5::Handle space = h5::dataspace(H5Dget_space(set.get()));
+      if (hsize_t(H5Sget_simple_extent_npoints(space.get())) != count) {
+        set.reset();
+        ok = H5Ldelete(group, part.name.c_str(), H5P_DEFAULT) >= 0;
+      }
+    }
+    if (ok && !set.valid()) {
+      h5::Handle space = h5::dataspace(H5Screate_simple(1, &count, nullptr));
+      h5::Handle props = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
+      H5Pset_obj_track_times(props.get(), false);
+      set = h5::dataset(H5Dcreate2(group, part.name.c_str(), H5T_IEEE_F64LE, space.get(),
+                                   H5P_DEFAULT, props.get(), H5P_DEFAULT));
+      ok = set.valid() && h5::write_string_attribute(set.get(), "units", part.units);
+    }
+    if (ok && count > 0)
+      ok = H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                    part.values.data()) >= 0;
+    ok = ok && h5::write_int_attribute(set.get(), "checksum",
+                                       static_cast<long long>(checkpoint_checksum(part.values)));
+  }
+  ok = ok && h5::write_int_attribute(group, "frame", checkpoint.frame) &&
+       h5::write_int_attribute(group, "written_frames", checkpoint.written_frames) &&
+       h5::write_int_attribute(group, "trajectory_frames", checkpoint.trajectory_frames);
+  if (!ok)
+    throw IoError(fmt::format("{}: writing the checkpoint of frame {} failed (disk full?)",
+                              partial_path(), checkpoint.frame));
+}
+
+namespace {
+
+// Appends rows [0, rows) of `path` in `source` to `target`, byte for byte;
+// the reason in `why` when the source has no such dataset or another shape or type.
+bool copy_rows(hid_t source, const std::string& path, hid_t target, hsize_t rows, std::string& why,
+               bool& write_failed) {
+  if (H5Lexists(source, path.substr(0, path.find('/')).c_str(), H5P_DEFAULT) <= 0 ||
+      H5Lexists(source, path.c_str(), H5P_DEFAULT) <= 0) {
+    why = fmt::format("has no /{}", path);
+    return false;
+  }
+  h5::Handle from = h5::dataset(H5Dopen2(source, path.c_str(), H5P_DEFAULT));
+  h5::Handle from_space = h5::dataspace(H5Dget_space(from.get()));
+  h5::Handle to_space = h5::dataspace(H5Dget_space(target));
+  h5::Handle from_type = h5::datatype(H5Dget_type(from.get()));
+  h5::Handle type = h5::datatype(H5Dget_type(target));
+  const int rank = H5Sget_simple_extent_ndims(to_space.get());
+  std::vector<hsize_t> from_dims(std::size_t(std::max(rank, 1))), to_dims = from_dims;
+  bool same = from.valid() && H5Sget_simple_extent_ndims(from_space.get()) == rank &&
+              H5Tequal(from_type.get(), type.get()) > 0;
+  if (same) {
+    H5Sget_simple_extent_dims(from_space.get(), from_dims.data(), nullptr);
+    H5Sget_simple_extent_dims(to_space.get(), to_dims.data(), nullptr);
+    same = std::equal(from_dims.begin() + 1, from_dims.end(), to_dims.begin() + 1) &&
+           from_dims[0] >= rows;
+  }
+  if (!same) {
+    why = fmt::format("holds /{} in another shape or type than this run writes", path);
+    return false;
+  }
+  std::size_t row_bytes = H5Tget_size(type.get());
+  for (int d = 1; d < rank; ++d) row_bytes *= std::size_t(to_dims[std::size_t(d)]);
+  std::vector<unsigned char> row(row_bytes);
+  std::vector<hsize_t> start(std::size_t(rank), 0), count = from_dims;
+  count[0] = 1;
+  h5::Handle memory = h5::dataspace(H5Screate_simple(rank, count.data(), nullptr));
+  for (hsize_t r = 0; r < rows; ++r) {
+    start[0] = r;
+    H5Sselect_hyperslab(from_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                        nullptr);
+    if (H5Dread(from.get(), type.get(), memory.get(), from_space.get(), H5P_DEFAULT, row.data()) <
+        0) {
+      why = fmt::format("cannot read row {} of /{}", r, path);
+      return false;
+    }
+    if (!append_row(target, r, type.get(), row.data())) {
+      write_failed = true;
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void FrameWriter::copy_frames(const std::string& source, int frames, int trajectory_frames) {
+  h5::Handle from = h5::file(H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (!from.valid()) throw UserError(fmt::format("{}: cannot open to copy its frames", source));
+  std::vector<std::pair<hid_t, std::string>> sets = {
+      {impl_->time.get(), "frames/time"},
+      {impl_->positions.get(), "frames/positions"},
+      {impl_->velocity.get(), "frames/velocity"},
+      {impl_->strain.get(), "frames/strain"},
+      {impl_->coarse_positions.get(), "coarse/positions"},
+      {impl_->max_strain.get(), "stats/max_strain"},
+      {impl_->mean_strain.get(), "stats/mean_strain"},
+      {impl_->stage_count > 0 ? impl_->stage_seconds.get() : -1, "stats/stage_seconds"},
+      {impl_->wall_seconds.get(), "stats/wall_seconds"},
+      {impl_->kinetic.get(), "stats/kinetic_energy"}};
+  for (std::size_t i = 0; i < impl_->series.size(); ++i)
+    sets.emplace_back(impl_->series[i].get(), "stats/" + impl_->series_names[i]);
+  std::string why;
+  bool write_failed = false;
+  for (const auto& [set, path] : sets)
+    if (set >= 0 && !copy_rows(from.get(), path, set, hsize_t(frames), why, write_failed)) break;
+  if (why.empty() && !write_failed && impl_->trajectory.valid())
+    copy_rows(from.get(), "coarse/trajectory", impl_->trajectory.get(), hsize_t(trajectory_frames),
+              why, write_failed);
+  if (write_failed)
+    throw IoError(
+        fmt::format("{}: copying the frames of {} failed (disk full?)", partial_path(), source));
+  if (!why.empty()) throw UserError(fmt::format("{}: {}", source, why));
+  // What the writer keeps of the frames it wrote itself.
+  std::vector<double> values(std::size_t(frames), 0.0);
+  const auto read_all = [&](hid_t set) {
+    if (frames == 0) return true;
+    return H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
+  };
+  if (!read_all(impl_->time.get()))
+    throw IoError(fmt::format("{}: cannot read back /frames/time", partial_path()));
+  impl_->times = values;
+  if (!read_all(impl_->wall_seconds.get()))
+    throw IoError(fmt::format("{}: cannot read back /stats/wall_seconds", partial_path()));
+  wall_after_first_s_ = 0.0;
+  for (std::size_t i = 1; i < values.size(); ++i) wall_after_first_s_ += values[i];
+  frames_ = frames;
+  trajectory_frames_ = impl_->trajectory.valid() ? trajectory_frames : 0;
 }
 
 void FrameWriter::finish(const RunStatus& status) {

@@ -194,6 +194,47 @@ void OutputReader::read_what_commands_read() const {
   }
   for (const int frame : {0, trajectory_frames_ - 1})
     if (frame >= 0) quietly([&] { coarse_trajectory(frame); });
+  quietly([&] { checkpoint(); });
+}
+
+std::optional<Checkpoint> OutputReader::checkpoint() const {
+  const hid_t file = impl_->file.get();
+  if (H5Lexists(file, "/checkpoint", H5P_DEFAULT) <= 0) return std::nullopt;
+  h5::Handle group = h5::group(H5Gopen2(file, "/checkpoint", H5P_DEFAULT));
+  H5G_info_t group_info{};
+  long long frame = -1, written = -1, trajectory = -1;
+  if (!group.valid() || H5Gget_info(group.get(), &group_info) < 0 ||
+      !h5::read_int_attribute(group.get(), "frame", frame) ||
+      !h5::read_int_attribute(group.get(), "written_frames", written) ||
+      !h5::read_int_attribute(group.get(), "trajectory_frames", trajectory) || frame < 0 ||
+      written < 0 || trajectory < 0 || frame >= limits::kFrames || written > frame + 1 ||
+      trajectory > frame + 1 || group_info.nlinks > 16)
+    throw UserError(fmt::format("{}: /checkpoint is damaged (its counts or parts)", path_));
+  Checkpoint checkpoint;
+  checkpoint.frame = int(frame);
+  checkpoint.written_frames = int(written);
+  checkpoint.trajectory_frames = int(trajectory);
+  for (hsize_t i = 0; i < group_info.nlinks; ++i) {
+    char name[64] = {};
+    if (H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof name,
+                           H5P_DEFAULT) <= 0 ||
+        name[sizeof name - 1] != 0)
+      throw UserError(fmt::format("{}: /checkpoint is damaged (a part's name)", path_));
+    const std::string path = fmt::format("/checkpoint/{}", name);
+    // At most positions and velocities of the largest lattice, twice over.
+    Checkpoint::Part& part = checkpoint.parts.emplace_back();
+    part.name = name;
+    part.owned = read_all(file, path_, path.c_str(), 12 * hsize_t(limits::kLatticeNodes));
+    part.values = part.owned;
+    h5::Handle set = h5::dataset(H5Dopen2(file, path.c_str(), H5P_DEFAULT));
+    h5::read_string_attribute(set.get(), "units", part.units);
+    long long checksum = 0;
+    if (!h5::read_int_attribute(set.get(), "checksum", checksum) ||
+        static_cast<std::uint64_t>(checksum) != checkpoint_checksum(part.values))
+      throw UserError(
+          fmt::format("{}: /checkpoint/{} is damaged (its checksum)", path_, part.name));
+  }
+  return checkpoint;
 }
 
 std::string OutputReader::attribute(const char* name) const {

@@ -197,9 +197,10 @@ with tempfile.TemporaryDirectory() as base:
         # These 20 flips make HDF5 1.10.8 loop for ever in a read render makes: the test
         # read is given up after 60 s, exit 2 (the first 4 KiB of good.h5 are the same
         # bytes in every run of this scene).
-        flips = [(358, 4), (395, 32), (432, 32), (748, 128), (944, 16), (1164, 8), (1231, 64),
-                 (1293, 4), (1578, 2), (1765, 128), (2099, 2), (2289, 2), (2293, 8), (2381, 2),
-                 (2574, 1), (2790, 64), (2860, 128), (3033, 4), (3241, 8), (3794, 64)]
+        # Found again on 2026-12-05, when /checkpoint changed the file's layout.
+        flips = [(93, 64), (164, 4), (174, 1), (181, 32), (492, 2), (496, 2), (1091, 32),
+                 (2057, 2), (2284, 128), (2482, 1), (2579, 8), (2723, 8), (2776, 4), (2888, 4),
+                 (2891, 1), (3024, 2), (3084, 8), (3401, 8), (3819, 16), (4010, 1)]
         data = bytearray(pristine)
         for offset, mask in flips:
             data[offset] ^= mask
@@ -210,6 +211,28 @@ with tempfile.TemporaryDirectory() as base:
             one_error(r, 2, "a file that makes HDF5 loop", "damaged")
         except subprocess.TimeoutExpired:
             check(False, "a file that makes HDF5 loop: render still running after 120 s")
+        # A damaged checkpoint: run --resume continues, or says why not; it never
+        # crashes and never leaves an output behind.
+        rng = random.Random(31)
+        resumed = {}
+        for n in range(20):
+            data = bytearray(pristine)
+            for _ in range(20):  # anywhere: /checkpoint's data lies past the first 4 KiB
+                bit = rng.randrange(len(data) * 8)
+                data[bit // 8] ^= 1 << (bit % 8)
+            with open(os.path.join(d, "bad.h5"), "wb") as f:
+                f.write(data)
+            r = run(["run", "--resume", "bad.h5", "--frames", "6", "-o", "more.h5", "--quiet"], d)
+            resumed[r.returncode] = resumed.get(r.returncode, 0) + 1
+            if r.returncode != 0:  # a checksum guards every part: damage is refused
+                one_error(r, 2, f"damaged checkpoint #{n}: run --resume")
+                for left in ("more.h5", "more.h5.partial", "more.xdmf"):
+                    check(not os.path.exists(os.path.join(d, left)),
+                          f"damaged checkpoint #{n}: a refused resume left {left}")
+            for left in ("more.h5", "more.xdmf"):
+                if os.path.exists(os.path.join(d, left)):
+                    os.remove(os.path.join(d, left))
+        print("damaged checkpoints: run --resume exit codes", resumed)
 
     # 6. An image that does not fit in memory is one error line, not a crash.
     if wanted("render_memory") and not ASAN:

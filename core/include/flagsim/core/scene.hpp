@@ -187,6 +187,10 @@ struct Output {
   /// per-node datasets (/frames/positions, velocity, strain, /coarse/*),
   /// chunked one frame a chunk; 0: stored as they are.
   int compression = 0;
+  /// The simulation's state (/checkpoint, float64) at the first frame, before a
+  /// flush once a second, and at the end, so that `run --resume` can continue
+  /// the run; false: none.
+  bool checkpoint = true;
   bool has_field(std::string_view name) const {
     return std::find(fields.begin(), fields.end(), name) != fields.end();
   }

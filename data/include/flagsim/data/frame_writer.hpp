@@ -17,6 +17,7 @@
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/named_number.hpp"
 #include "flagsim/core/run_status.hpp"
+#include "flagsim/data/checkpoint.hpp"
 
 namespace flagsim::data {
 
@@ -101,6 +102,25 @@ class FrameWriter {
   /// metadata. HDF5 cannot undo a flush that ran out of space half-way (the
   /// file is then unreadable), so the run stops while the file is still whole.
   std::optional<std::string> out_of_room() const;
+
+  /// True when the next write_frame flushes the file to disk (every
+  /// `flush_every` frames): the moment to write_checkpoint first, so that the
+  /// file a killed run leaves can still be continued.
+  bool flushes_next() const { return (frames_ + 1) % flush_every_ == 0; }
+  /// Writes /checkpoint, replacing the one before (a part that changed size is
+  /// made anew); it reaches the disk with the next flush or finish(). Throws IoError.
+  void write_checkpoint(const Checkpoint& checkpoint);
+  /// Appends the first `frames` frames of the run file `source` (every dataset
+  /// this file has under /frames, /stats and /coarse) and the first
+  /// `trajectory_frames` rows of its coarse trajectory, as stored, bit for bit
+  /// (`run --resume`). Throws UserError when `source` lacks one of them or holds
+  /// it in another shape or type, IoError when writing fails.
+  void copy_frames(const std::string& source, int frames, int trajectory_frames);
+
+  /// Closes and removes the .partial file (and the directories the writer made
+  /// for it): for a command that fails with nothing to keep (exit 2). The
+  /// writer takes no further call.
+  void discard() noexcept;
 
   int frames_written() const { return frames_; }
   /// The mean of /stats/wall_seconds over the written frames after the first

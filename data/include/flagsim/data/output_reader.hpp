@@ -3,10 +3,12 @@
 // rendering). Foreign or unreadable files are the user's to fix: UserError.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "flagsim/core/vec3.hpp"
+#include "flagsim/data/checkpoint.hpp"
 
 namespace flagsim::data {
 
@@ -56,6 +58,9 @@ class OutputReader {
   /// /stats/stage_seconds as [T][S], and the stage names.
   std::vector<std::vector<double>> stage_seconds() const;
   std::vector<std::string> stage_names() const;
+  /// /checkpoint (FrameWriter::write_checkpoint), or nullopt in a file without
+  /// one. Throws UserError when it is there but damaged.
+  std::optional<Checkpoint> checkpoint() const;
 
   /// Makes the reads `info`, `render`, `export` and the others make (every
   /// attribute and series they read, the first and last frame): the test read
