@@ -36,7 +36,8 @@ struct RunSummary {
   bool has_infill = false;
   int converged_frames = 0, infill_frames = 0;
   double median_iterations = 0.0, median_offset_m = 0.0, max_offset_m = 0.0;
-  int checkpoint_frame = -1;  ///< the frame /checkpoint holds the state of; -1: none
+  int checkpoint_frame = -1;      ///< the frame /checkpoint holds the state of; -1: none
+  std::string checkpoint_damage;  ///< why /checkpoint cannot be read (run --resume refuses it)
   double fps = 0.0;
 };
 
@@ -61,8 +62,12 @@ RunSummary summarise(const std::string& path) {
   s.frames = reader.frame_count();
   s.dense = reader.dense();
   s.trajectory_frames = reader.trajectory_frames();
-  if (const std::optional<data::Checkpoint> checkpoint = reader.checkpoint())
-    s.checkpoint_frame = checkpoint->frame;
+  try {  // a damaged checkpoint leaves the frames readable: said below, not an error here
+    if (const std::optional<data::Checkpoint> checkpoint = reader.checkpoint())
+      s.checkpoint_frame = checkpoint->frame;
+  } catch (const UserError& e) {
+    s.checkpoint_damage = e.what();
+  }
   s.fps = reader.number_attribute("fps", 0.0);
   const std::vector<double> times = reader.times_s();
   if (!times.empty()) {
@@ -111,7 +116,8 @@ RunSummary summarise(const std::string& path) {
 // Everything a file says, as valid UTF-8 (for JSON) or also without control
 // characters (for a terminal): a file cannot recolour the screen or break a parser.
 RunSummary cleaned(RunSummary s, std::string (*clean)(const std::string&)) {
-  for (std::string* text : {&s.file, &s.status, &s.reason, &s.mode, &s.effects, &s.version})
+  for (std::string* text :
+       {&s.file, &s.status, &s.reason, &s.mode, &s.effects, &s.version, &s.checkpoint_damage})
     *text = clean(*text);
   for (auto& stage : s.stage_ms) stage.first = clean(stage.first);
   return s;
@@ -151,15 +157,20 @@ std::string text_of(const RunSummary& s) {
         "counterparts {:.1f} mm off (median), {:.1f} mm (max)\n",
         s.converged_frames, s.infill_frames, s.median_iterations, 1e3 * s.median_offset_m,
         1e3 * s.max_offset_m);
-  if (s.checkpoint_frame >= 0 && s.fps > 0.0)
-    fmt::format_to(out,
-                   "resume    its state at frame {} (t = {:.4g} s): `flag-sim run --resume {} "
-                   "--frames N` continues the run\n",
-                   s.checkpoint_frame, s.checkpoint_frame / s.fps, s.file);
-  else if (s.status != "diverged")
-    fmt::format_to(out,
-                   "resume    no checkpoint (output.checkpoint = false, or an older flag-sim): not "
-                   "to be continued\n");
+  // What run --resume can do with the file (nothing for a diverged run: it would diverge again).
+  if (s.status != "diverged") {
+    if (!s.checkpoint_damage.empty())
+      fmt::format_to(out, "resume    not possible: {}\n", s.checkpoint_damage);
+    else if (s.checkpoint_frame >= 0 && s.fps > 0.0)
+      fmt::format_to(out,
+                     "resume    its state at frame {} (t = {:.4g} s): `flag-sim run --resume {} "
+                     "--frames N` continues the run\n",
+                     s.checkpoint_frame, s.checkpoint_frame / s.fps, s.file);
+    else
+      fmt::format_to(out,
+                     "resume    no checkpoint (output.checkpoint = false, or an older flag-sim): "
+                     "not to be continued\n");
+  }
   if (s.has_timing) {
     std::string split;
     for (const auto& [name, ms] : s.stage_ms)

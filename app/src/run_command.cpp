@@ -121,14 +121,14 @@ data::Checkpoint checkpoint_of(const hybrid::SimulationState& state, int written
 hybrid::SimulationState state_of(const data::Checkpoint& checkpoint, const std::string& file) {
   const auto values = [&](const char* name, std::size_t multiple) {
     const data::Checkpoint::Part* part = checkpoint.part(name);
-    if (!part || part->values.size() % multiple != 0)
+    const std::span<const double> found = part ? part->values() : std::span<const double>();
+    if (!part || found.size() % multiple != 0)
       throw UserError(fmt::format("{}: /checkpoint/{} is {}", file, name,
                                   part ? "damaged (its length)" : "missing"));
-    if (!std::all_of(part->values.begin(), part->values.end(),
-                     [](double v) { return std::isfinite(v); }))
+    if (!std::all_of(found.begin(), found.end(), [](double v) { return std::isfinite(v); }))
       throw UserError(
           fmt::format("{}: /checkpoint/{} is damaged (a value not finite)", file, name));
-    return part->values;
+    return found;
   };
   const auto vectors = [&](const char* name) {
     const std::span<const double> flat_values = values(name, 3);

@@ -380,7 +380,8 @@ void FrameWriter::write_checkpoint(const Checkpoint& checkpoint) {
   const hid_t group = impl_->checkpoint.get();
   for (const Checkpoint::Part& part : checkpoint.parts) {
     if (!ok) break;
-    const hsize_t count = part.values.size();
+    const std::span<const double> values = part.values();
+    const hsize_t count = values.size();
     h5::Handle set;
     if (H5Lexists(group, part.name.c_str(), H5P_DEFAULT) > 0) {
       set = h5::dataset(H5Dopen2(group, part.name.c_str(), H5P_DEFAULT));
@@ -399,10 +400,10 @@ void FrameWriter::write_checkpoint(const Checkpoint& checkpoint) {
       ok = set.valid() && h5::write_string_attribute(set.get(), "units", part.units);
     }
     if (ok && count > 0)
-      ok = H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                    part.values.data()) >= 0;
+      ok =
+          H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
     ok = ok && h5::write_int_attribute(set.get(), "checksum",
-                                       static_cast<long long>(checkpoint_checksum(part.values)));
+                                       static_cast<long long>(checkpoint_checksum(values)));
   }
   ok = ok && h5::write_int_attribute(group, "frame", checkpoint.frame) &&
        h5::write_int_attribute(group, "written_frames", checkpoint.written_frames) &&

@@ -225,12 +225,11 @@ std::optional<Checkpoint> OutputReader::checkpoint() const {
     Checkpoint::Part& part = checkpoint.parts.emplace_back();
     part.name = name;
     part.owned = read_all(file, path_, path.c_str(), 12 * hsize_t(limits::kLatticeNodes));
-    part.values = part.owned;
     h5::Handle set = h5::dataset(H5Dopen2(file, path.c_str(), H5P_DEFAULT));
     h5::read_string_attribute(set.get(), "units", part.units);
     long long checksum = 0;
     if (!h5::read_int_attribute(set.get(), "checksum", checksum) ||
-        static_cast<std::uint64_t>(checksum) != checkpoint_checksum(part.values))
+        static_cast<std::uint64_t>(checksum) != checkpoint_checksum(part.owned))
       throw UserError(
           fmt::format("{}: /checkpoint/{} is damaged (its checksum)", path_, part.name));
   }

@@ -5,8 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -19,11 +17,6 @@ namespace flagsim::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Every frame's positions, velocities, strain and coarse nodes, as doubles.
 std::vector<double> frames_of(const std::string& path) {
@@ -151,12 +144,12 @@ TEST(Refine, RenderAndExportTakeACoarseTrajectoryDirectly) {
     ASSERT_EQ(exported.exit_code, 0) << exported.err;
   }
   for (const char* file : {"_png/frame_00002.png", "_png/frame_00003.png"})
-    EXPECT_TRUE(bytes_of(dir.file(std::string("c") + file)) ==
-                bytes_of(dir.file(std::string("d") + file)))
+    EXPECT_TRUE(file_bytes(dir.file(std::string("c") + file)) ==
+                file_bytes(dir.file(std::string("d") + file)))
         << file;
   // The OBJs differ in their first line only, which names the input.
-  const std::string from_coarse = bytes_of(dir.file("c_obj/frame_00003.obj"));
-  const std::string from_dense = bytes_of(dir.file("d_obj/frame_00003.obj"));
+  const std::string from_coarse = file_bytes(dir.file("c_obj/frame_00003.obj"));
+  const std::string from_dense = file_bytes(dir.file("d_obj/frame_00003.obj"));
   EXPECT_TRUE(from_coarse.starts_with("# flag-sim"));
   EXPECT_TRUE(from_coarse.substr(from_coarse.find('\n')) ==
               from_dense.substr(from_dense.find('\n')));

@@ -108,6 +108,21 @@ with tempfile.TemporaryDirectory() as tmp:
     why = same(reference, contents(killed))
     check(why is None, f"SIGKILL: the continued run: {why}")
 
+    # A checkpoint changed after it was written: run --resume refuses it (its
+    # checksum), info still reads the file and says why it cannot be continued.
+    changed = os.path.join(tmp, "changed.h5")
+    os.rename(whole, changed)
+    with h5py.File(changed, "r+") as f:
+        f["checkpoint/physics_time"][0] += 1e-12
+    result = resume(changed, tmp)
+    check(result.returncode == 2 and result.stderr.startswith("error: ") and
+          "/checkpoint/physics_time is damaged (its checksum)" in result.stderr,
+          f"changed checkpoint: resume exit {result.returncode}: {result.stderr}")
+    check(not os.path.exists(changed + ".partial"), "changed checkpoint: a .partial was left")
+    info = subprocess.run([flag_sim, "info", changed], capture_output=True, text=True, timeout=60)
+    check(info.returncode == 0 and "resume    not possible: " in info.stdout and
+          "(its checksum)" in info.stdout, f"changed checkpoint: info said {info.stdout}{info.stderr}")
+
 if failures:
     print("\n".join(failures))
     sys.exit(1)

@@ -6,7 +6,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -18,11 +17,6 @@ namespace flagsim::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Everything a run file holds of the simulation (not its wall times): every
 // frame's fields, the coarse trajectory, the statistics and the checkpoint.
@@ -53,7 +47,7 @@ std::vector<double> contents_of(const std::string& path) {
     values.insert(values.end(), {double(checkpoint->frame), double(checkpoint->written_frames),
                                  double(checkpoint->trajectory_frames)});
     for (const data::Checkpoint::Part& part : checkpoint->parts)
-      values.insert(values.end(), part.values.begin(), part.values.end());
+      values.insert(values.end(), part.owned.begin(), part.owned.end());
   }
   return values;
 }
@@ -128,13 +122,13 @@ TEST(Resume, ByDurationAndToAnotherFileTheFirstStaysAsItWas) {
   args[2] = "long.h5";
   args.back() = "scene.duration=0.5";
   ASSERT_EQ(run_flag_sim(args, dir.path()).exit_code, 0);
-  const std::string before = bytes_of(dir.file("short.h5"));
+  const std::string before = file_bytes(dir.file("short.h5"));
   const ProcessResult result =
       run_flag_sim({"run", "--resume", "short.h5", "--set", "scene.duration=0.5", "-o",
                     "sub/continued.h5", "--quiet"},
                    dir.path());
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_EQ(bytes_of(dir.file("short.h5")), before) << "-o elsewhere: the resumed file changed";
+  EXPECT_EQ(file_bytes(dir.file("short.h5")), before) << "-o elsewhere: the resumed file changed";
   EXPECT_TRUE(fs::exists(dir.file("sub/continued.xdmf")));
   EXPECT_TRUE(contents_of(dir.file("long.h5")) == contents_of(dir.file("sub/continued.h5")));
 }
@@ -154,7 +148,7 @@ TEST(Resume, WhatCannotBeContinuedIsSaidAndNothingIsWritten) {
   ASSERT_EQ(make("done.h5", {}).exit_code, 0);
   ASSERT_EQ(make("bare.h5", {"--set", "output.checkpoint=false"}).exit_code, 0);
   ASSERT_EQ(make("blown.h5", {"--set", "limits.max_strain=0.0001"}).exit_code, 3);
-  const std::string done = bytes_of(dir.file("done.h5"));
+  const std::string done = file_bytes(dir.file("done.h5"));
   const std::vector<std::pair<std::vector<std::string>, std::string>> refusals = {
       {{"run", "--resume", "done.h5"},
        "error: done.h5: already holds frames 0 to 3 (t = 0 .. 0.1 s) of its 4-frame scene; give "
@@ -187,7 +181,15 @@ TEST(Resume, WhatCannotBeContinuedIsSaidAndNothingIsWritten) {
   const ProcessResult blown = run({"run", "--resume", "blown.h5", "--frames", "9"});
   EXPECT_EQ(blown.exit_code, 2);
   EXPECT_EQ(blown.err.rfind("error: blown.h5: its run diverged (at t = ", 0), 0u) << blown.err;
-  EXPECT_EQ(bytes_of(dir.file("done.h5")), done);
+  EXPECT_EQ(file_bytes(dir.file("done.h5")), done);
+  // info says what resume can do: continue done.h5, nothing for the diverged run.
+  const ProcessResult info_done = run({"info", "done.h5"});
+  EXPECT_NE(info_done.out.find("resume    its state at frame 3 (t = 0.1 s): `flag-sim run "
+                               "--resume done.h5 --frames N` continues the run\n"),
+            std::string::npos)
+      << info_done.out;
+  EXPECT_EQ(run({"info", "blown.h5"}).out.find("resume"), std::string::npos);
+  EXPECT_NE(run({"info", "bare.h5"}).out.find("resume    no checkpoint"), std::string::npos);
   // A file that is not a run: the reader's own message.
   std::ofstream(dir.file("scene.toml")) << "[scene]\n";
   EXPECT_EQ(run({"run", "--resume", "scene.toml", "--frames", "9"}).exit_code, 2);

@@ -3,8 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
@@ -13,11 +11,6 @@
 
 namespace flagsim::data {
 namespace {
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 TEST(Pc2Writer, HeaderThenSamplesAsFloat32) {
   test::TempDir dir;
@@ -29,7 +22,7 @@ TEST(Pc2Writer, HeaderThenSamplesAsFloat32) {
     cache.write_sample(sample);
     cache.finish();
   }
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = test::file_bytes(path);
   ASSERT_EQ(bytes.size(), kPc2HeaderBytes + sizeof(float) * 2 * 2 * 3);
   EXPECT_EQ(bytes.substr(0, 12), std::string("POINTCACHE2\0", 12));
   std::int32_t version = 0, points = 0, samples = 0;

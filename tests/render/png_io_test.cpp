@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "flagsim/core/errors.hpp"
@@ -24,11 +22,6 @@ Image gradient(int width, int height) {
   return image;
 }
 
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(PngIo, ReadsBackWhatItWrote) {
   test::TempDir dir;
   const Image image = gradient(17, 9);
@@ -44,9 +37,9 @@ TEST(PngIo, TheSameImageGivesTheSameBytes) {
   const Image image = gradient(32, 20);
   write_png(dir.file("a.png"), image);
   write_png(dir.file("b.png"), image);
-  const std::string a = bytes_of(dir.file("a.png"));
+  const std::string a = test::file_bytes(dir.file("a.png"));
   EXPECT_EQ(a.substr(1, 3), "PNG");
-  EXPECT_EQ(a, bytes_of(dir.file("b.png")));
+  EXPECT_EQ(a, test::file_bytes(dir.file("b.png")));
 }
 
 TEST(PngIo, AMissingOrForeignFileIsTheUsersMistakeAndNamesTheFile) {

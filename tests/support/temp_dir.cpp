@@ -4,8 +4,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace flagsim::test {
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 TempDir::TempDir() {
   char pattern[] = "/tmp/flagsim_test_XXXXXX";

@@ -22,4 +22,7 @@ class TempDir {
   std::string path_;
 };
 
+/// The bytes of the file at `path`; empty when it cannot be read.
+std::string file_bytes(const std::string& path);
+
 }  // namespace flagsim::test

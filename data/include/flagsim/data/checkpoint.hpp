@@ -15,9 +15,10 @@ namespace flagsim::data {
 struct Checkpoint {
   struct Part {
     std::string name;
-    std::span<const double> values;  ///< `owned`, or (to write) the simulation's own state
+    std::span<const double> view;    ///< to write: a view of the simulation's own state
     std::string units;               ///< its dataset's `units`
-    std::vector<double> owned = {};  ///< what a reader read
+    std::vector<double> owned = {};  ///< what a reader read (no view into it: copies stay safe)
+    std::span<const double> values() const { return view.data() ? view : std::span(owned); }
   };
   int frame = 0;              ///< the simulated frame the state is at (t = frame / fps)
   int written_frames = 0;     ///< /frames/time's length then (this frame's row included)
