@@ -15,8 +15,9 @@
 #   plot         OUT_DIR/accuracy_cost.png: the hybrid lattices and the coarser
 #                references against mass-spring at 129x193, each figure's
 #                error over its ms/frame (after convergence and hybrid).
-#   laws         mass-spring at about 31 mm spacing and the hybrid at its
-#                0.125 m coarse cells, winds of 5, 10 and 20 m/s on the default
+#   laws         mass-spring at about 16 mm spacing (65 x 97 on the default
+#                flag: within 6% of 129 x 193 in f, lambda, c/U and A/L) and
+#                the hybrid at its 0.125 m coarse cells, winds of 5, 10 and 20 m/s on the default
 #                1.5 x 1.0 m flag and aspect ratios H/L 0.5, 0.67 and 1 at
 #                10 m/s: f, lambda/L, c/U, A/L, St (Raynaud & Mulleners 2026:
 #                lambda/L ~ 1.87, c ~ U; St 0.2-0.4 for heavy flags).
@@ -26,7 +27,7 @@
 # anywhere from 3 to 5 Hz), and 2 s of flapping at 129x193 read f 13% low and
 # the mean shape 70 mm off where 5 s agreed with 65x97 within the seed spread.
 # About 50 minutes for `convergence` on one core (mass-spring at 129x193: 2.9 s
-# a frame), 3 for `laws`, 1 for `hybrid`.
+# a frame), 40 for `laws`, 3 for `hybrid`.
 # Usage: bench/flag_convergence.sh convergence|hybrid|laws|plot|all OUT_DIR
 #   env FRAMES (default 181: 6 s), FRAMES_FINEST (181, at 129x193), SEEDS ("1 2 3"),
 #   SETS (scene keys for every run, e.g. "wind.panel=0.25 bending.stiffness=1e-4")
@@ -92,11 +93,11 @@ hybrid() {
 laws() {
   # name, flag size, full-lattice fine, hybrid fine, hybrid coarse, wind
   local cases=(
-    "u05_ar067 1.5,1.0 33,49 129,193 9,13 5"
-    "u10_ar067 1.5,1.0 33,49 129,193 9,13 10"
-    "u20_ar067 1.5,1.0 33,49 129,193 9,13 20"
-    "u10_ar050 1.5,0.75 25,49 97,193 7,13 10"
-    "u10_ar100 1.5,1.5 49,49 193,193 13,13 10"
+    "u05_ar067 1.5,1.0 65,97 129,193 9,13 5"
+    "u10_ar067 1.5,1.0 65,97 129,193 9,13 10"
+    "u20_ar067 1.5,1.0 65,97 129,193 9,13 20"
+    "u10_ar050 1.5,0.75 49,97 97,193 7,13 10"
+    "u10_ar100 1.5,1.5 97,97 193,193 13,13 10"
   )
   local groups=()
   for c in "${cases[@]}"; do

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -133,6 +135,30 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
                        fmt::format("the {} backend {}; {} applies to solver.backend = "
                                    "\"implicit\" or scene.mode = \"implicit\"",
                                    to_string(*backend), lacks, key));
+  }
+  // The direct solve probes the step's matrix over 2-link neighbourhoods
+  // (implicit_euler.cpp); the wind on panels coarser than the cloth couples
+  // nodes a panel or more apart, so its matrix would be wrong (issue 35).
+  if (const std::optional<Backend> backend = backend_of(scene);
+      backend && *backend == Backend::kImplicit && scene.solver.linear == LinearSolver::kCholesky &&
+      scene.wind && scene.wind->model == AirModel::kPanels) {
+    const bool hybrid = scene.mode == Mode::kHybrid && scene.flag.coarse;
+    const int rows = hybrid ? (*scene.flag.coarse)[0] : scene.flag.fine_rows;
+    const int cols = hybrid ? (*scene.flag.coarse)[1] : scene.flag.fine_cols;
+    const double panel = scene.wind->panel_m;
+    // As AirPanels does: the cloth is its own panel lattice unless it is finer both ways.
+    const auto panel_nodes = [&](double length) {
+      return 1 + std::max(1, int(std::ceil(length / panel - 1e-9)));
+    };
+    if (panel_nodes(scene.flag.height_m) < rows && panel_nodes(scene.flag.width_m) < cols)
+      fail_at(
+          root, "solver.linear",
+          fmt::format("\"cholesky\" assembles the step's matrix from each node's two-link "
+                      "neighbourhood, and the wind seen on panels of wind.panel = {:g} m "
+                      "couples the {} x {} cloth's nodes farther apart than that; use "
+                      "\"cg\", or a wind.panel no larger than the cloth's cells ({:.3g} m)",
+                      panel, rows, cols,
+                      std::min(scene.flag.width_m / (cols - 1), scene.flag.height_m / (rows - 1))));
   }
   // The vortex lattice's added mass is solved with the spring-damper
   // integrator's masses (vortex_wake.hpp); the other steppers would take it

@@ -42,7 +42,7 @@ constexpr KeyMeaning kMeanings[] = {
     {"wind.friction", "skin-friction coefficient of both faces, on the planform area"},
     {"wind.panel",
      "side of the panels the air sees the cloth on (waves shorter than two are "
-     "not driven)"},
+     "not driven); absent: a sixth of flag.size[0]"},
     {"wind.model",
      "panels (quasi-steady force on panels) or vortex (experimental unsteady vortex lattice; "
      "docs/flag_physics.md)"},

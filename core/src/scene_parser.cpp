@@ -255,7 +255,9 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     wind.drag = in.real("drag", wind.drag, Bound::between(0.0, 100.0), "");
     wind.lift = in.real("lift", wind.lift, Bound::between(0.0, 100.0), "");
     wind.friction = in.real("friction", wind.friction, Bound::between(0.0, 10.0), "");
-    wind.panel_m = in.real("panel", wind.panel_m, Bound{1.0e-3, 1.0e3, false}, "m");
+    // Default: a sixth of the flag's length, so that the air sees every flag at
+    // the same relative scale (docs/flag_physics.md, "The panel size").
+    wind.panel_m = in.real("panel", scene.flag.width_m / 6.0, Bound{1.0e-3, 1.0e3, false}, "m");
     wind.model = in.choice_of("model", wind.model, kAirModelNames);
     wind.air_density_kg_m3 =
         in.real("air_density", wind.air_density_kg_m3, Bound{0.0, 100.0, true}, "kg/m^3");

@@ -299,6 +299,7 @@ TEST(AeroForce, TheShortestLatticeWavesAreNotDrivenByTheWind) {
   // lattice's shortest waves as hard as the flag-length wave. On 0.125 m panels a
   // wave of 5 cells (78 mm at 65 x 97) is not seen.
   Scene scene = windy_flag(65, 97);
+  scene.wind->panel_m = 0.125;
   const double cell = 1.5 / 96.0, c = 7.0;
   const double long_wave = wave_growth_rate(scene, 1.9 * 1.5, c);
   const double short_wave = wave_growth_rate(scene, 5.0 * cell, c);

@@ -126,6 +126,23 @@ TEST(SceneParser, ErrorsNameFileLineColumnAndKey) {
             "s.toml:7:1: unknown key 'flag.areal_densty' (did you mean 'flag.areal_density'?)");
 }
 
+TEST(SceneParser, TheDirectSolveIsRefusedWhereTheWindCouplesFartherThanItProbes) {
+  // Cholesky probes the step's matrix over two-link neighbourhoods; on a
+  // cloth finer than the air's panels the wind couples farther than that.
+  std::string implicit_scene = kMinimal;
+  implicit_scene.replace(implicit_scene.find("mass-spring"), 11, "implicit");
+  const std::string cholesky = "[solver]\nlinear = \"cholesky\"\n";
+  const std::string wind = "[wind]\nvelocity = [10, 0, 0]\n";
+  // 9 x 13 on 1.5 x 1.0 m: 0.125 m cells, finer than the default 0.25 m panels.
+  EXPECT_EQ(error_of(implicit_scene + cholesky + wind),
+            "s.toml:8:10: solver.linear: \"cholesky\" assembles the step's matrix from each "
+            "node's two-link neighbourhood, and the wind seen on panels of wind.panel = 0.25 m "
+            "couples the 9 x 13 cloth's nodes farther apart than that; use \"cg\", or a "
+            "wind.panel no larger than the cloth's cells (0.125 m)");
+  EXPECT_EQ(error_of(implicit_scene + cholesky + wind + "panel = 0.125\n"), "");
+  EXPECT_EQ(error_of(implicit_scene + wind), "");  // the conjugate gradient
+}
+
 TEST(SceneParser, LinearSolverOnlyWithTheImplicitBackend) {
   const std::string cholesky = "[solver]\nlinear = \"cholesky\"\n";
   const std::string message = error_of(std::string(kMinimal) + cholesky);

@@ -101,8 +101,11 @@ struct Wind {
   /// a flapping boundary layer is thinner (Lighthill's drag increase), so 0.015.
   double friction = 0.015;
   /// Side of the panels the air sees the cloth on, m (air_panels.hpp): waves
-  /// shorter than about two panels are not driven, at any lattice.
-  double panel_m = 0.125;
+  /// shorter than about two panels are not driven, at any lattice. A model
+  /// constant of the quasi-steady wind (docs/flag_physics.md): in a scene file
+  /// its default is a sixth of the flag's length along the wind, flag.size[0]
+  /// (the parser's), 0.25 m for the default flag.
+  double panel_m = 0.25;
   double air_density_kg_m3 = 1.225;
   std::optional<Gusts> gusts;
   std::optional<Turbulence> turbulence;
