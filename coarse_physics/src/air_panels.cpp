@@ -60,12 +60,13 @@ AirPanels::Axis axis_weights(int cloth_nodes, int panel_nodes) {
       last = std::max(last, i);
     }
   }
+  axis.panels_of.assign(std::size_t(cloth_nodes), {panel_nodes, -1});
   for (int i = 0; i < cloth_nodes; ++i)
     for (int p = 0; p < panel_nodes; ++p) {
       if (w(p, i) <= 0.0) continue;
-      axis.cloth.push_back(i);
-      axis.panel.push_back(p);
-      axis.w.push_back(w(p, i));
+      auto& [first, last] = axis.panels_of[std::size_t(i)];
+      first = std::min(first, p);
+      last = std::max(last, p);
     }
   axis.table = std::move(table);
   return axis;
@@ -91,30 +92,40 @@ AirPanels::AirPanels(const Lattice& cloth, double panel_m)
 void AirPanels::sample(std::span<const Vec3> cloth, std::vector<double> (&to)[3]) const {
   assert(!same_);
   const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
-  const std::size_t Kp = std::size_t(panels_.cols), Np = panels_.node_count();
+  const std::size_t Jp = std::size_t(panels_.rows), Kp = std::size_t(panels_.cols);
   // Along the rows (cloth columns -> panel columns), the three axes in one pass.
-  for (auto& h : half_) std::fill(h.begin(), h.end(), 0.0);
+  // Each sum runs over one panel's few cloth nodes in registers: accumulating
+  // into memory entry by entry chained every add through a store (measured:
+  // half the wind's time on the hybrid's coarse lattice).
   double *h0 = half_[0].data(), *h1 = half_[1].data(), *h2 = half_[2].data();
   for (std::size_t j = 0; j < J; ++j) {
     const Vec3* row = cloth.data() + j * K;
-    const std::size_t out = j * Kp;
-    for (std::size_t e = 0; e < cols_.w.size(); ++e) {
-      const double w = cols_.w[e];
-      const Vec3& c = row[cols_.cloth[e]];
-      const std::size_t q = out + std::size_t(cols_.panel[e]);
-      h0[q] += w * c.x();
-      h1[q] += w * c.y();
-      h2[q] += w * c.z();
+    for (std::size_t q = 0; q < Kp; ++q) {
+      const auto [first, last] = cols_.range[q];
+      const double* w = cols_.table.data() + q * K;
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+      for (int i = first; i <= last; ++i) {
+        s0 += w[i] * row[i].x();
+        s1 += w[i] * row[i].y();
+        s2 += w[i] * row[i].z();
+      }
+      h0[j * Kp + q] = s0;
+      h1[j * Kp + q] = s1;
+      h2[j * Kp + q] = s2;
     }
   }
   // Down the columns (cloth rows -> panel rows).
   for (int axis = 0; axis < 3; ++axis) {
-    std::fill(to[axis].begin(), to[axis].begin() + std::ptrdiff_t(Np), 0.0);
-    for (std::size_t e = 0; e < rows_.w.size(); ++e) {
-      const double w = rows_.w[e];
-      double* out = to[axis].data() + std::size_t(rows_.panel[e]) * Kp;
-      const double* in = half_[axis].data() + std::size_t(rows_.cloth[e]) * Kp;
-      for (std::size_t q = 0; q < Kp; ++q) out[q] += w * in[q];
+    const double* half = half_[axis].data();
+    for (std::size_t p = 0; p < Jp; ++p) {
+      const auto [first, last] = rows_.range[p];
+      const double* w = rows_.table.data() + p * J;
+      double* out = to[axis].data() + p * Kp;
+      for (std::size_t q = 0; q < Kp; ++q) {
+        double sum = 0.0;
+        for (int j = first; j <= last; ++j) sum += w[j] * half[std::size_t(j) * Kp + q];
+        out[q] = sum;
+      }
     }
   }
 }
@@ -123,15 +134,18 @@ void AirPanels::spread(const std::vector<double> (&from)[3], std::span<Vec3> clo
   assert(!same_);
   const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
   const std::size_t Kp = std::size_t(panels_.cols);
-  // Up the columns (panel rows -> cloth rows).
+  // Up the columns (panel rows -> cloth rows): each cloth row from its few panel rows.
   for (int axis = 0; axis < 3; ++axis) {
-    std::vector<double>& half = half_[axis];
-    std::fill(half.begin(), half.end(), 0.0);
-    for (std::size_t e = 0; e < rows_.w.size(); ++e) {
-      const double w = rows_.w[e];
-      double* out = half.data() + std::size_t(rows_.cloth[e]) * Kp;
-      const double* in = from[axis].data() + std::size_t(rows_.panel[e]) * Kp;
-      for (std::size_t q = 0; q < Kp; ++q) out[q] += w * in[q];
+    double* half = half_[axis].data();
+    const double* in = from[axis].data();
+    for (std::size_t j = 0; j < J; ++j) {
+      const auto [first, last] = rows_.panels_of[j];
+      for (std::size_t q = 0; q < Kp; ++q) {
+        double sum = 0.0;
+        for (int p = first; p <= last; ++p)
+          sum += rows_.table[std::size_t(p) * J + j] * in[std::size_t(p) * Kp + q];
+        half[j * Kp + q] = sum;
+      }
     }
   }
   // Along the rows (panel columns -> cloth columns), the three axes in one pass.
@@ -139,10 +153,16 @@ void AirPanels::spread(const std::vector<double> (&from)[3], std::span<Vec3> clo
   for (std::size_t j = 0; j < J; ++j) {
     Vec3* row = cloth.data() + j * K;
     const std::size_t in = j * Kp;
-    for (std::size_t e = 0; e < cols_.w.size(); ++e) {
-      const double w = cols_.w[e];
-      const std::size_t q = in + std::size_t(cols_.panel[e]);
-      row[cols_.cloth[e]] += Vec3(w * h0[q], w * h1[q], w * h2[q]);
+    for (std::size_t i = 0; i < K; ++i) {
+      const auto [first, last] = cols_.panels_of[i];
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+      for (int q = first; q <= last; ++q) {
+        const double w = cols_.table[std::size_t(q) * K + i];
+        s0 += w * h0[in + std::size_t(q)];
+        s1 += w * h1[in + std::size_t(q)];
+        s2 += w * h2[in + std::size_t(q)];
+      }
+      row[i] += Vec3(s0, s1, s2);
     }
   }
 }

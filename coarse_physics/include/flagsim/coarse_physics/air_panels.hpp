@@ -10,7 +10,8 @@
 // had no converged answer. A real flag's pressure is set by the air around it,
 // which averages the surface over lengths of the order of the flag's height.
 // Here the wind is evaluated on a lattice of panels about `panel` metres wide
-// (wind.panel, default 0.125 m: 8 x 12 panels on the default 1.0 x 1.5 m flag),
+// (wind.panel, default a sixth of flag.size[0]: 6 x 4 panels of 0.25 m on the
+// default 1.5 x 1.0 m flag),
 // whose nodes are weighted averages of the cloth's nodes, and each panel node's
 // force is spread back over the same cloth nodes with the same weights:
 //
@@ -30,8 +31,8 @@
 // weights are separable (row weights times column weights), so sampling and
 // spreading are two one-dimensional passes each, O(J K) whatever the panels.
 //
-// When the cloth is no finer than the panels (the hybrid's coarse lattice at
-// its default 9 x 13, any coarser one), the panels are the cloth's own nodes
+// When the cloth is no finer than the panels in a direction (the 5 x 7
+// hybrid's coarse lattice on the default flag), the panels are the cloth's own nodes
 // and both maps are the identity: same_lattice() says so and the wind skips them.
 #include <span>
 #include <utility>
@@ -75,14 +76,12 @@ class AirPanels {
   }
 
   /// One direction's weights, normalised per panel index: `table` dense
-  /// [panel x cloth]; the same non-zero weights as entries e (cloth index
-  /// `cloth[e]`, panel index `panel[e]`, weight `w[e]`; each cloth index in at
-  /// most three entries, sorted by cloth index) for the two passes; `range[p]`
-  /// the cloth indices [first, last] with a weight in panel index p.
+  /// [panel x cloth]; `range[p]` the cloth indices [first, last] with a weight
+  /// in panel index p; `panels_of[i]` the panel indices [first, last] in which
+  /// cloth index i has a weight (at most three).
   struct Axis {
-    std::vector<int> cloth, panel;
-    std::vector<double> w, table;
-    std::vector<std::pair<int, int>> range;
+    std::vector<double> table;
+    std::vector<std::pair<int, int>> range, panels_of;
   };
 
  private:
