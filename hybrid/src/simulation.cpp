@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string_view>
 
+#include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
@@ -141,6 +142,18 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
   return params;
 }
 
+// [J*K] 1 on the dense nodes that sit on coarse nodes (a Jc x Kc lattice whose
+// cells are whole numbers of dense cells; the corners at least).
+std::vector<std::uint8_t> coarse_sites(const Lattice& dense, int coarse_rows, int coarse_cols) {
+  std::vector<std::uint8_t> sites(dense.node_count(), 0);
+  const int row_step = std::max(1, (dense.rows - 1) / std::max(1, coarse_rows - 1));
+  const int col_step = std::max(1, (dense.cols - 1) / std::max(1, coarse_cols - 1));
+  for (int j = 0; j < dense.rows; j += row_step)
+    for (int k = 0; k < dense.cols; k += col_step) sites[dense.index(j, k)] = 1;
+  for (std::size_t c : dense.corners()) sites[c] = 1;
+  return sites;
+}
+
 // The dense lattice filled by the paper's infill from coarse nodes: shared by
 // the infill and hybrid modes. Velocities are the frame-to-frame differences
 // (for the divergence checks and /frames/velocity), and the kinetic energy is
@@ -161,6 +174,8 @@ class DenseInfill {
              scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
+        obstacles_(physics::Obstacles::of(scene)),
+        fixed_(coarse_sites(model.lattice, coarse_rows, coarse_cols)),
         mass_kg_(model.mass_kg),
         // The same start as the physics' (free nodes perturbed, pinned ones not).
         positions_(physics::initial_state(scene, model).x_m),
@@ -171,10 +186,14 @@ class DenseInfill {
   const Lattice& lattice() const { return lattice_; }
   const infill::InfillMethod& solver() const { return *solver_; }
   /// Pinned dense nodes stay where 3.1 puts them (on the pinned coarse lines).
-  void hold_pins(PinSet pin) { solver_->hold(physics::pinned_nodes(lattice_, pin)); }
+  void hold_pins(PinSet pin) {
+    const std::vector<std::uint8_t> held = physics::pinned_nodes(lattice_, pin);
+    solver_->hold(held);
+    for (std::size_t i = 0; i < held.size(); ++i) fixed_[i] |= held[i];
+  }
   void hold_corners() {
     std::vector<std::uint8_t> corners(lattice_.node_count(), 0);
-    for (std::size_t c : lattice_.corners()) corners[c] = 1;
+    for (std::size_t c : lattice_.corners()) corners[c] = fixed_[c] = 1;
     solver_->hold(corners);
   }
   void register_stages(StageTimes& times) { solver_->register_stages(times); }
@@ -183,10 +202,15 @@ class DenseInfill {
     effects.emplace_back("infill");
     if (wrinkles_) effects.emplace_back("wrinkles");
   }
-  /// New dense lattice from the coarse nodes [Jc*Kc]; velocities over 1/fps.
-  void fill(std::span<const Vec3> coarse_m, StageTimes* times) {
+  /// New dense lattice of frame `frame` from the coarse nodes [Jc*Kc];
+  /// velocities over 1/fps. With solids ([pole] radius, [ground]) no dense
+  /// node is left inside one: the infill does not undo the physics' contact.
+  void fill(std::span<const Vec3> coarse_m, int frame, StageTimes* times) {
     std::copy(positions_.begin(), positions_.end(), previous_.begin());
     solver_->fill(coarse_m, positions_, times);
+    if (obstacles_)
+      obstacles_->settle(frame / fps_, lattice_, positions_, fixed_, previous_, kSettleRounds,
+                         kSettleReach);
     for (std::size_t i = 0; i < positions_.size(); ++i)
       velocities_[i] = (positions_[i] - previous_[i]) * fps_;
   }
@@ -220,6 +244,15 @@ class DenseInfill {
   std::unique_ptr<infill::InfillMethod> solver_;
   double fps_;
   bool wrinkles_;
+  std::optional<physics::Obstacles> obstacles_;
+  /// [J*K] 1: a node the contact pass leaves where the infill put it: held by
+  /// the infill (pins, corners) or on a coarse node (the physics keeps those
+  /// out of the solids, and the dense lattice passes through them).
+  std::vector<std::uint8_t> fixed_;
+  /// The contact pass's fiber sweeps, and how far from the nodes it moved
+  /// (links): a coarse cell of the default lattice is 16 links.
+  static constexpr int kSettleRounds = 40;
+  static constexpr int kSettleReach = 16;
   std::vector<double> mass_kg_;  ///< [J*K] the fine cloth's node masses, kg
   std::vector<Vec3> positions_, previous_, velocities_;
 };
@@ -270,7 +303,7 @@ class InfillSimulation final : public Simulation {
  private:
   void fill(double time_s, StageTimes* times) {
     const auto corners = infill::corners_at(scene_.keyframes, time_s);
-    dense_.fill(corners, times);
+    dense_.fill(corners, frame_, times);
   }
 
   Scene scene_;  ///< a copy: the caller's Scene may go before the simulation does
@@ -291,7 +324,7 @@ class HybridSimulation final : public Simulation {
         paper_infill_(infill_solver_of(scene) == InfillSolverKind::kPaper) {
     dense_.hold_pins(scene.flag.pin);
     make_reachable();  // frame 0: the coarse nodes where the physics starts
-    dense_.fill(reachable_, nullptr);
+    dense_.fill(reachable_, 0, nullptr);
     dense_.forget_velocities();
   }
   const Lattice& lattice() const override { return dense_.lattice(); }
@@ -310,7 +343,7 @@ class HybridSimulation final : public Simulation {
     ++frame_;
     if (!replay_) physics_->advance_frame(times);
     run_timed(times, slack_stage_, [&] { make_reachable(); });
-    dense_.fill(reachable_, times);
+    dense_.fill(reachable_, frame_, times);
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
