@@ -59,7 +59,10 @@ struct BulletCloth::World {
 };
 
 BulletCloth::BulletCloth(const Scene& scene)
-    : model_(make_cloth_model(scene)), pins_(scene.pole), world_(std::make_unique<World>()) {
+    : model_(make_cloth_model(scene)),
+      pins_(scene.pole),
+      obstacles_(Obstacles::of(scene, model_.lattice)),
+      world_(std::make_unique<World>()) {
   rest_m_ = model_.lattice.rest_positions();
   const std::size_t n = rest_m_.size();
   terms_ = make_force_terms(scene, model_, pins_, {.stretch = false, .gravity = false});
@@ -200,6 +203,7 @@ void BulletCloth::advance_frame(StageTimes* times) {
   for (int s = 0; s < substeps_per_frame_ && !stop_requested(); ++s) {
     world_->time_s = start + s * dt;
     world_->world.stepSimulation(dt, 0);  // exactly one substep of dt
+    if (obstacles_) project_contacts(start + (s + 1) * dt);
   }
   if (times && step_stage_ >= 0) {
     for (int stage : term_stage_) in_terms += times->seconds()[std::size_t(stage)];
@@ -209,6 +213,23 @@ void BulletCloth::advance_frame(StageTimes* times) {
   times_ = nullptr;
   state_.time_s = start + substeps_per_frame_ * dt;
   read_back();
+}
+
+void BulletCloth::project_contacts(double time_s) {
+  btSoftBody& body = *world_->body;
+  const std::size_t n = rest_m_.size();
+  contact_x_.resize(n);
+  contact_v_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    contact_x_[i] = from_bt(body.m_nodes[int(i)].m_x);
+    contact_v_[i] = from_bt(body.m_nodes[int(i)].m_v);
+  }
+  if (obstacles_->project(time_s, contact_x_, contact_v_, model_.pinned) == 0) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (model_.pinned[i]) continue;
+    body.m_nodes[int(i)].m_x = to_bt(contact_x_[i]);
+    body.m_nodes[int(i)].m_v = to_bt(contact_v_[i]);
+  }
 }
 
 void BulletCloth::read_back() {

@@ -35,6 +35,7 @@ ImplicitEuler::~ImplicitEuler() = default;
 ImplicitEuler::ImplicitEuler(const Scene& scene)
     : model_(make_cloth_model(scene)),
       pins_(scene.pole),
+      obstacles_(Obstacles::of(scene, model_.lattice)),
       rest_m_(model_.lattice.rest_positions()),
       terms_(make_force_terms(scene, model_, pins_)),
       effects_(physics_effects(scene, model_)),
@@ -314,6 +315,7 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
       state_.x_m[i] = x0_[i] + h * v[i];
     }
   }
+  if (obstacles_) obstacles_->project(next_time, state_.x_m, v, model_.pinned);
   state_.time_s = next_time;
 }
 

@@ -11,6 +11,7 @@ namespace flagsim::physics {
 SpringDamperSolver::SpringDamperSolver(const Scene& scene)
     : model_(make_cloth_model(scene)),
       pins_(scene.pole),
+      obstacles_(Obstacles::of(scene, model_.lattice)),
       initial_(physics::initial_state(scene, model_)) {
   rest_m_ = model_.lattice.rest_positions();
   inverse_mass_.resize(model_.mass_kg.size());
@@ -87,6 +88,7 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
       state.x_m[node] = where_(i, next_time);
       state.v_m_s[node] = (state.x_m[node] - before) / dt_s;
     }
+    if (obstacles_) obstacles_->project(next_time, state.x_m, state.v_m_s, model_.pinned);
     state.time_s = next_time;
   };
   run_timed(times, update_stage_, update);

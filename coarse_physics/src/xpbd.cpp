@@ -26,6 +26,7 @@ double xpbd_propagation_substep_s(const ClothModel& model, double stretch_modulu
 Xpbd::Xpbd(const Scene& scene)
     : model_(make_cloth_model(scene)),
       pins_(scene.pole),
+      obstacles_(Obstacles::of(scene, model_.lattice)),
       rest_m_(model_.lattice.rest_positions()),
       // Stretch and bending are constraints below; the rest are forces.
       terms_(make_force_terms(scene, model_, pins_, {.stretch = false, .bending = false})),
@@ -129,6 +130,7 @@ void Xpbd::step(double dt_s, StageTimes* times) {
           model_.pinned[i] ? pin_velocity : Vec3((predicted_[i] - state_.x_m[i]) * inverse_h);
       state_.x_m[i] = predicted_[i];
     }
+    if (obstacles_) obstacles_->project(next_time, state_.x_m, state_.v_m_s, model_.pinned);
   });
   state_.time_s = next_time;
 }

@@ -60,6 +60,16 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
                   "hybrid mode needs flag.coarse = [Jc, Kc], the lattice the physics runs on");
   if (scene.pole && flag.pin == PinSet::kNone)
     fail_at(root, "pole", "a moving pole needs pinned nodes; set flag.pin (e.g. \"left\")");
+  // The solids must leave the cloth's start outside them (the pole does: its
+  // surface touches the pole edge, x = origin.x, and the flag lies at x >= it).
+  if (scene.ground) {
+    const double lowest = flag.origin_m.y() - flag.height_m;
+    if (lowest < scene.ground->height_m)
+      fail_at(root, "ground.height",
+              fmt::format("the flag's bottom edge starts at y = {:g} m, below the ground at {:g} "
+                          "m; lower the ground or raise flag.origin",
+                          lowest, scene.ground->height_m));
+  }
   // Tables the mode does not use: in a scene file, a mistake (each would be
   // silently ignored); with the mode chosen on the command line (--mode,
   // --set scene.mode, compare's reference), ignored and named in one note.
@@ -76,11 +86,12 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
     if (scene.keyframes.empty())
       scene_in.fail("mode", "infill mode needs [[keyframe]] tables with the corner positions");
     // No physics in infill mode: a physics table would be silently ignored.
-    const std::pair<bool, const char*> physics[] = {{scene.wind.has_value(), "wind"},
-                                                    {scene.pole.has_value(), "pole"},
-                                                    {scene.bending.has_value(), "bending"},
-                                                    {root.table().contains("gravity"), "gravity"},
-                                                    {root.table().contains("solver"), "solver"}};
+    const std::pair<bool, const char*> physics[] = {
+        {scene.wind.has_value(), "wind"},
+        {scene.pole.has_value() || scene.solid_pole.has_value(), "pole"},
+        {scene.bending.has_value(), "bending"},
+        {root.table().contains("gravity"), "gravity"},
+        {root.table().contains("solver"), "solver"}};
     for (const auto& [present, table] : physics)
       if (present)
         unused_table(table,
@@ -89,6 +100,7 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
     if (mode_from_command_line) {
       scene.wind.reset();
       scene.pole.reset();
+      scene.solid_pole.reset();
       scene.bending.reset();
       scene.gravity.reset();
       scene.solver = Solver{};

@@ -35,6 +35,12 @@ constexpr KeyMeaning kMeanings[] = {
     {"pole.axis", "direction of the pole's motion"},
     {"pole.amplitude", "amplitude of the pole's motion"},
     {"pole.frequency", "frequency of the pole's motion"},
+    {"pole.radius",
+     "the pole as a solid cylinder touching the pinned edge (optional; with no motion key it "
+     "stands still)"},
+    {"pole.friction", "Coulomb friction of the cloth on the solid pole"},
+    {"ground.height", "a solid horizontal plane at this y that no node goes below"},
+    {"ground.friction", "Coulomb friction of the cloth on the ground"},
     {"gravity.acceleration", "gravity; without [gravity] there is none"},
     {"wind.velocity", "mean wind; without [wind] there is none"},
     {"wind.drag", "normal-force coefficient of a flat plate"},
@@ -107,7 +113,8 @@ std::pair<std::string, std::string> split_key(const std::string& key) {
 }
 
 bool table_present(const Scene& scene, const std::string& table) {
-  if (table == "pole") return scene.pole.has_value();
+  if (table == "pole") return scene.pole.has_value() || scene.solid_pole.has_value();
+  if (table == "ground") return scene.ground.has_value();
   if (table == "gravity") return scene.gravity.has_value();
   if (table == "wind" || table.starts_with("wind.")) return scene.wind.has_value();
   if (table == "bending") return scene.bending.has_value();
@@ -168,13 +175,14 @@ std::string keys_reference() {
   // at its default), one with every optional table present (their keys'
   // defaults), and an infill scene (the keyframe keys).
   const std::string every_table =
-      "[scene]\nmode = \"hybrid\"\n[flag]\ncoarse = [9, 13]\n[pole]\n[gravity]\n[wind]\n"
+      "[scene]\nmode = \"hybrid\"\n[flag]\ncoarse = [9, 13]\n[pole]\n[ground]\n[gravity]\n[wind]\n"
       "[wind.gusts]\n[wind.turbulence]\n[bending]\n[wrinkles]\n[infill]\n[render]\n";
   const std::string infill =
       "[scene]\nmode = \"infill\"\n[[keyframe]]\ntime = 0.0\n"
       "corners = [[0.0, 2.0, 0.0], [1.5, 2.0, 0.0], [0.0, 1.0, 0.0], [1.5, 1.0, 0.0]]\n";
   std::map<std::string, SceneKey, std::less<>> read;
-  for (const std::string& text : {std::string(), every_table, infill}) {
+  const std::string solid_pole = "[pole]\nradius = 0.03\n";  // the keys of a standing pole
+  for (const std::string& text : {std::string(), every_table, infill, solid_pole}) {
     std::vector<SceneKey> keys;
     parse_scene(text, "<keys>", std::span<const Override>(), &keys);
     for (const SceneKey& k : keys)

@@ -47,6 +47,10 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "pole.axis",
                                          "pole.amplitude",
                                          "pole.frequency",
+                                         "pole.radius",
+                                         "pole.friction",
+                                         "ground.height",
+                                         "ground.friction",
                                          "gravity.acceleration",
                                          "wind.velocity",
                                          "wind.drag",
@@ -223,15 +227,35 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
 void read_effect_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("pole")) {
     TableReader in(*t, "pole", root.where_of("pole"));
-    in.choice("motion", "sine", {"sine"});
-    PoleMotion pole;
-    const Vec3 axis = in.vec3("axis", pole.axis_unit, "(direction)");
-    if (axis.norm() == 0.0) in.fail("axis", "expected a non-zero direction [x, y, z]");
-    pole.axis_unit = axis.normalized();
-    pole.amplitude_m = in.real("amplitude", pole.amplitude_m, Bound::between(0.0, 100.0), "m");
-    pole.frequency_hz = in.real("frequency", pole.frequency_hz, Bound::between(0.0, 100.0), "Hz");
+    // A table with a radius and no motion key is a pole that stands still;
+    // any motion key (or a table without a radius, as before radii) shakes it.
+    const bool moves = !in.has("radius") || in.has("motion") || in.has("axis") ||
+                       in.has("amplitude") || in.has("frequency");
+    if (moves) {
+      in.choice("motion", "sine", {"sine"});
+      PoleMotion pole;
+      const Vec3 axis = in.vec3("axis", pole.axis_unit, "(direction)");
+      if (axis.norm() == 0.0) in.fail("axis", "expected a non-zero direction [x, y, z]");
+      pole.axis_unit = axis.normalized();
+      pole.amplitude_m = in.real("amplitude", pole.amplitude_m, Bound::between(0.0, 100.0), "m");
+      pole.frequency_hz = in.real("frequency", pole.frequency_hz, Bound::between(0.0, 100.0), "Hz");
+      scene.pole = pole;
+    }
+    if (const auto radius = in.optional_real("radius", Bound{0.0, 1.0, true}, "m")) {
+      SolidPole solid;
+      solid.radius_m = *radius;
+      solid.friction = in.real("friction", solid.friction, Bound::between(0.0, 10.0), "1");
+      scene.solid_pole = solid;
+    }
     in.finish(kAllKeys);
-    scene.pole = pole;
+  }
+  if (const toml::table* t = root.subtable("ground")) {
+    TableReader in(*t, "ground", root.where_of("ground"));
+    Ground ground;
+    ground.height_m = in.real("height", ground.height_m, Bound::between(-1e4, 1e4), "m");
+    ground.friction = in.real("friction", ground.friction, Bound::between(0.0, 10.0), "1");
+    in.finish(kAllKeys);
+    scene.ground = ground;
   }
   if (const toml::table* t = root.subtable("gravity")) {
     TableReader in(*t, "gravity", root.where_of("gravity"));

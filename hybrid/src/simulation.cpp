@@ -9,6 +9,7 @@
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
+#include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/core/divergence.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
@@ -161,6 +162,8 @@ class DenseInfill {
              scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
+        obstacles_(physics::Obstacles::of(scene)),
+        fixed_(model.lattice.node_count(), 0),
         mass_kg_(model.mass_kg),
         // The same start as the physics' (free nodes perturbed, pinned ones not).
         positions_(physics::initial_state(scene, model).x_m),
@@ -171,22 +174,36 @@ class DenseInfill {
   const Lattice& lattice() const { return lattice_; }
   const infill::InfillMethod& solver() const { return *solver_; }
   /// Pinned dense nodes stay where 3.1 puts them (on the pinned coarse lines).
-  void hold_pins(PinSet pin) { solver_->hold(physics::pinned_nodes(lattice_, pin)); }
+  void hold_pins(PinSet pin) {
+    const std::vector<std::uint8_t> held = physics::pinned_nodes(lattice_, pin);
+    solver_->hold(held);
+    for (std::size_t i = 0; i < held.size(); ++i) fixed_[i] |= held[i];
+  }
   void hold_corners() {
     std::vector<std::uint8_t> corners(lattice_.node_count(), 0);
-    for (std::size_t c : lattice_.corners()) corners[c] = 1;
+    for (std::size_t c : lattice_.corners()) corners[c] = fixed_[c] = 1;
     solver_->hold(corners);
   }
-  void register_stages(StageTimes& times) { solver_->register_stages(times); }
+  void register_stages(StageTimes& times) {
+    solver_->register_stages(times);
+    if (obstacles_) contact_stage_ = times.add("contact", StageGroup::kInfill);
+  }
   /// Effects of the infill, after those of whatever drives the coarse nodes.
   void add_effects(std::vector<std::string>& effects) const {
     effects.emplace_back("infill");
     if (wrinkles_) effects.emplace_back("wrinkles");
   }
-  /// New dense lattice from the coarse nodes [Jc*Kc]; velocities over 1/fps.
-  void fill(std::span<const Vec3> coarse_m, StageTimes* times) {
+  /// New dense lattice of frame `frame` from the coarse nodes [Jc*Kc];
+  /// velocities over 1/fps. With solids ([pole] radius, [ground]) no dense
+  /// node is left inside one: the infill does not undo the physics' contact.
+  void fill(std::span<const Vec3> coarse_m, int frame, StageTimes* times) {
     std::copy(positions_.begin(), positions_.end(), previous_.begin());
     solver_->fill(coarse_m, positions_, times);
+    if (obstacles_)
+      run_timed(times, contact_stage_, [&] {
+        obstacles_->settle(frame / fps_, lattice_, positions_, fixed_, previous_, kSettleRounds,
+                           kSettleReach);
+      });
     for (std::size_t i = 0; i < positions_.size(); ++i)
       velocities_[i] = (positions_[i] - previous_[i]) * fps_;
   }
@@ -220,6 +237,18 @@ class DenseInfill {
   std::unique_ptr<infill::InfillMethod> solver_;
   double fps_;
   bool wrinkles_;
+  std::optional<physics::Obstacles> obstacles_;
+  int contact_stage_ = -1;
+  /// [J*K] 1: a node the contact pass leaves where the infill put it: held by
+  /// the infill (pins, corners). Not the dense nodes on coarse nodes: the
+  /// smooth infill's 3.4 moves those too (by up to 60 mm on a cloth hanging
+  /// against the pole), so they can end inside the pole although the physics'
+  /// nodes are outside (pole_calm diverged at frame 20 while they were held).
+  std::vector<std::uint8_t> fixed_;
+  /// The contact pass's fiber sweeps, and how far from the nodes it moved
+  /// (links): a coarse cell of the default lattice is 16 links.
+  static constexpr int kSettleRounds = 40;
+  static constexpr int kSettleReach = 16;
   std::vector<double> mass_kg_;  ///< [J*K] the fine cloth's node masses, kg
   std::vector<Vec3> positions_, previous_, velocities_;
 };
@@ -270,7 +299,7 @@ class InfillSimulation final : public Simulation {
  private:
   void fill(double time_s, StageTimes* times) {
     const auto corners = infill::corners_at(scene_.keyframes, time_s);
-    dense_.fill(corners, times);
+    dense_.fill(corners, frame_, times);
   }
 
   Scene scene_;  ///< a copy: the caller's Scene may go before the simulation does
@@ -291,7 +320,7 @@ class HybridSimulation final : public Simulation {
         paper_infill_(infill_solver_of(scene) == InfillSolverKind::kPaper) {
     dense_.hold_pins(scene.flag.pin);
     make_reachable();  // frame 0: the coarse nodes where the physics starts
-    dense_.fill(reachable_, nullptr);
+    dense_.fill(reachable_, 0, nullptr);
     dense_.forget_velocities();
   }
   const Lattice& lattice() const override { return dense_.lattice(); }
@@ -310,7 +339,7 @@ class HybridSimulation final : public Simulation {
     ++frame_;
     if (!replay_) physics_->advance_frame(times);
     run_timed(times, slack_stage_, [&] { make_reachable(); });
-    dense_.fill(reachable_, times);
+    dense_.fill(reachable_, frame_, times);
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }

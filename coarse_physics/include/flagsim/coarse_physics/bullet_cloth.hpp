@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
+#include "flagsim/coarse_physics/obstacles.hpp"
 
 namespace flagsim::physics {
 
@@ -73,9 +74,13 @@ class BulletCloth final : public ClothIntegrator {
  private:
   struct World;  // Bullet's objects, kept out of this header
   void read_back();
+  /// [pole] radius, [ground]: Bullet's nodes out of the solids after a substep.
+  void project_contacts(double time_s);
+  std::vector<Vec3> contact_x_, contact_v_;  ///< scratch of project_contacts
 
   ClothModel model_;
   PinMotion pins_;
+  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;
   std::vector<std::unique_ptr<ForceTerm>> terms_;  // bending, wind: what Bullet does not model
   std::vector<std::string> effects_;

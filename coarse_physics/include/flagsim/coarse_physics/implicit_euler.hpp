@@ -50,6 +50,7 @@
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
 
 namespace flagsim::physics {
@@ -109,6 +110,7 @@ class ImplicitEuler final : public ClothIntegrator {
 
   ClothModel model_;
   PinMotion pins_;
+  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<std::string> effects_;

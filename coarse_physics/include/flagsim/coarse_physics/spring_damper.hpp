@@ -20,6 +20,7 @@
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/coarse_physics/stability.hpp"
 #include "flagsim/coarse_physics/vortex_wake.hpp"
@@ -74,6 +75,7 @@ class SpringDamperSolver {
  private:
   ClothModel model_;
   PinMotion pins_;
+  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   ClothState initial_;
   std::vector<Vec3> rest_m_;
   std::vector<double> inverse_mass_;

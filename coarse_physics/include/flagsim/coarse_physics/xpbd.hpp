@@ -42,6 +42,7 @@
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
 
 namespace flagsim::physics {
@@ -93,6 +94,7 @@ class Xpbd final : public ClothIntegrator {
 
   ClothModel model_;
   PinMotion pins_;
+  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;
   std::vector<double> inverse_mass_;               ///< [J*K] 0 on pinned nodes, 1/kg
   std::vector<std::unique_ptr<ForceTerm>> terms_;  ///< gravity, wind: explicit

@@ -69,6 +69,20 @@ struct PoleMotion {
   double frequency_hz = 1.0;
 };
 
+/// [pole] radius: the pole as a solid vertical cylinder whose surface touches
+/// the pinned edge (axis at origin.x - radius, origin.z, moving with the pins);
+/// no node enters it. Contact is inelastic, with Coulomb friction.
+struct SolidPole {
+  double radius_m = 0.0;
+  double friction = 0.3;  ///< Coulomb coefficient, fabric on a painted pole
+};
+
+/// [ground]: a solid horizontal plane y = height that no node goes below.
+struct Ground {
+  double height_m = 0.0;
+  double friction = 0.5;  ///< Coulomb coefficient, fabric on pavement or grass
+};
+
 struct Gravity {
   Vec3 acceleration_m_s2 = Vec3(0.0, -9.81, 0.0);
 };
@@ -225,7 +239,9 @@ struct Scene {
   std::uint64_t seed = 0;
 
   FlagSpec flag;
-  std::optional<PoleMotion> pole;
+  std::optional<PoleMotion> pole;       ///< [pole] with motion keys (or none at all)
+  std::optional<SolidPole> solid_pole;  ///< [pole] radius
+  std::optional<Ground> ground;
   std::optional<Gravity> gravity;  ///< absent, or present with zero acceleration: none
   std::optional<Wind> wind;
   std::optional<Bending> bending;

@@ -1,0 +1,80 @@
+#pragma once
+// The solids a cloth meets ([pole] radius, [ground]; issue 31): a vertical
+// cylinder whose surface touches the pinned edge, and a horizontal plane.
+//
+// Contact is a projection after each step (every backend, and the infill's
+// dense lattice): a node found inside a solid is put back on its surface, the
+// part of its velocity (relative to the solid) into the solid is removed
+// (inelastic), and Coulomb friction takes at most mu times that removed
+// speed off the tangential velocity. Projection adds no stiffness, so no
+// stability limit changes; it is exact for the nodes (no node is ever inside
+// a solid at the end of a step). Given the lattice, the links are kept out of
+// the pole too: a link whose segment cuts the cylinder (seen from above, where
+// the cylinder is a disc) has its two ends pushed out along the normal at its
+// closest point, in proportion to their barycentric weights (a position-based
+// edge contact), so that a coarse cloth wraps the pole as a polygon around it
+// rather than as chords through it, and the dense lattice the infill lays
+// along those chords stays outside. The ground needs no link pass (a segment
+// whose ends are above a plane is above it).
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "flagsim/coarse_physics/pin_motion.hpp"
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/scene.hpp"
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim::physics {
+
+class Obstacles {
+ public:
+  /// The scene's solids, or nullopt when it has none (then nothing runs: the
+  /// frames are the bits of before).
+  static std::optional<Obstacles> of(const Scene& scene);
+  /// The same, keeping the links of `lattice` (rows, columns, both diagonals)
+  /// out of the pole as well as its nodes.
+  static std::optional<Obstacles> of(const Scene& scene, const Lattice& lattice);
+
+  /// Projects the nodes not `pinned` (all when it is empty) out of the solids at
+  /// time t (the pole moves with the pins), positions [n] m, velocities [n]
+  /// m/s (may be empty: positions only). Returns the number of nodes moved.
+  /// `came_from_m` [n] (may be empty): where each node was before the move
+  /// being corrected, outside the solids; a node found inside the pole then
+  /// goes out on the side it came from, not the side nearest to it (a lattice
+  /// laid anew each frame, like the infill's, may put neighbours on either
+  /// side of the axis, and they must not come out on opposite sides).
+  int project(double time_s, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+              std::span<const std::uint8_t> pinned, std::span<const Vec3> came_from_m = {}) const;
+
+  /// A lattice laid anew each frame (the infill's dense one), at time t, m:
+  /// projects its nodes not `fixed` out of the solids as project() does, then,
+  /// where any moved, lets the fibers around them take their rest lengths
+  /// again while staying out (`rounds` Gauss-Seidel sweeps of the row and
+  /// column links' lengths, each followed by the projection, over the box of
+  /// nodes within `reach` links of a moved one; fixed nodes and those outside
+  /// the box stay put). So the excess length a fiber has between coarse nodes
+  /// that a solid cuts goes round the solid instead of into a stretch.
+  /// Returns the number of nodes the first projection moved.
+  int settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m,
+             std::span<const std::uint8_t> fixed, std::span<const Vec3> came_from_m, int rounds,
+             int reach) const;
+
+  /// Distance of `x_m` inside the nearest solid at time t, m (0: outside).
+  double depth_m(double time_s, const Vec3& x_m) const;
+
+ private:
+  std::optional<SolidPole> pole_;
+  std::optional<Ground> ground_;
+  /// Pushes the links that cut the pole's disc out of it (see the top).
+  void project_links(const Vec3& axis_m, const Vec3& pole_v_m_s, std::span<Vec3> x_m,
+                     std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned) const;
+
+  Vec3 axis_point_m_ = Vec3::Zero();                 ///< on the pole's axis, at rest
+  std::vector<std::array<std::uint32_t, 2>> links_;  ///< node pairs kept out of the pole
+  PinMotion pins_{std::nullopt};
+};
+
+}  // namespace flagsim::physics

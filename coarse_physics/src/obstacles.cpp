@@ -1,0 +1,204 @@
+#include "flagsim/coarse_physics/obstacles.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace flagsim::physics {
+namespace {
+
+// v (m/s) after an inelastic contact with normal n (unit, out of the solid) on
+// a solid moving at `solid_v`: no speed into the solid; Coulomb friction takes
+// at most mu times the removed speed off the sliding speed.
+Vec3 contact_velocity(const Vec3& v, const Vec3& solid_v, const Vec3& n, double mu) {
+  const Vec3 relative = v - solid_v;
+  const double normal = relative.dot(n);
+  if (normal >= 0.0) return v;  // leaving already
+  Vec3 tangential = relative - normal * n;
+  const double sliding = tangential.norm();
+  const double taken = mu * -normal;
+  tangential = sliding <= taken ? Vec3::Zero() : Vec3(tangential * (1.0 - taken / sliding));
+  return solid_v + tangential;
+}
+
+}  // namespace
+
+std::optional<Obstacles> Obstacles::of(const Scene& scene) {
+  if (!scene.solid_pole && !scene.ground) return std::nullopt;
+  Obstacles obstacles;
+  obstacles.pole_ = scene.solid_pole;
+  obstacles.ground_ = scene.ground;
+  if (scene.solid_pole)
+    obstacles.axis_point_m_ = scene.flag.origin_m - Vec3(scene.solid_pole->radius_m, 0.0, 0.0);
+  obstacles.pins_ = PinMotion(scene.pole);
+  return obstacles;
+}
+
+std::optional<Obstacles> Obstacles::of(const Scene& scene, const Lattice& lattice) {
+  std::optional<Obstacles> obstacles = of(scene);
+  if (!obstacles || !obstacles->pole_) return obstacles;
+  auto& links = obstacles->links_;
+  // Rows, columns and both diagonals: the diagonals keep a cell's middle out.
+  for (int j = 0; j < lattice.rows; ++j) {
+    for (int k = 0; k < lattice.cols; ++k) {
+      const auto a = std::uint32_t(lattice.index(j, k));
+      if (k + 1 < lattice.cols) links.push_back({a, std::uint32_t(lattice.index(j, k + 1))});
+      if (j + 1 < lattice.rows) links.push_back({a, std::uint32_t(lattice.index(j + 1, k))});
+      if (j + 1 < lattice.rows && k + 1 < lattice.cols)
+        links.push_back({a, std::uint32_t(lattice.index(j + 1, k + 1))});
+      if (j + 1 < lattice.rows && k > 0)
+        links.push_back({a, std::uint32_t(lattice.index(j + 1, k - 1))});
+    }
+  }
+  return obstacles;
+}
+
+void Obstacles::project_links(const Vec3& axis_m, const Vec3& pole_v_m_s, std::span<Vec3> x_m,
+                              std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned) const {
+  const double radius = pole_->radius_m;
+  const bool velocities = !v_m_s.empty();
+  for (const auto& [a, b] : links_) {
+    const double ma = !pinned.empty() && pinned[a] ? 0.0 : 1.0;  // inverse masses, relative
+    const double mb = !pinned.empty() && pinned[b] ? 0.0 : 1.0;
+    if (ma + mb == 0.0) continue;
+    // Seen from above: the segment p(t) = pa + t (pb - pa) against the disc.
+    const double ax = x_m[a].x() - axis_m.x(), az = x_m[a].z() - axis_m.z();
+    const double dx = x_m[b].x() - x_m[a].x(), dz = x_m[b].z() - x_m[a].z();
+    const double length2 = dx * dx + dz * dz;
+    if (length2 == 0.0) continue;
+    const double t = std::clamp(-(ax * dx + az * dz) / length2, 0.0, 1.0);
+    if (t == 0.0 || t == 1.0) continue;  // closest at an end: the node pass's
+    const double cx = ax + t * dx, cz = az + t * dz;
+    const double distance2 = cx * cx + cz * cz;
+    if (distance2 >= radius * radius) continue;
+    const double distance = std::sqrt(distance2);
+    // Through the axis (never met in practice): out on the left of a -> b.
+    const Vec3 n =
+        distance > 0.0 ? Vec3(cx / distance, 0.0, cz / distance) : Vec3(-dz, 0.0, dx).normalized();
+    // The constraint (p(t) - axis).n >= R has gradient (1 - t) n at a, t n at b.
+    const double wa = (1.0 - t) * ma, wb = t * mb;
+    const double lambda = (radius - distance) / ((1.0 - t) * wa + t * wb);
+    x_m[a] += lambda * wa * n;
+    x_m[b] += lambda * wb * n;
+    if (!velocities) continue;
+    // Inelastic: the contact point's speed into the pole is removed the same way.
+    const double approach = ((1.0 - t) * v_m_s[a] + t * v_m_s[b] - pole_v_m_s).dot(n);
+    if (approach >= 0.0) continue;
+    const double impulse = -approach / ((1.0 - t) * wa + t * wb);
+    v_m_s[a] += impulse * wa * n;
+    v_m_s[b] += impulse * wb * n;
+  }
+}
+
+int Obstacles::project(double time_s, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+                       std::span<const std::uint8_t> pinned,
+                       std::span<const Vec3> came_from_m) const {
+  int moved = 0;
+  const bool velocities = !v_m_s.empty();
+  Vec3 axis = Vec3::Zero(), pole_v = Vec3::Zero();
+  double radius = 0.0;
+  if (pole_) {
+    axis = axis_point_m_ + pins_.offset_m(time_s);
+    pole_v = pins_.velocity_m_s(time_s);
+    radius = pole_->radius_m;
+  }
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    if (!pinned.empty() && pinned[i]) continue;
+    Vec3& x = x_m[i];
+    bool moved_this = false;
+    if (pole_) {
+      const double dx = x.x() - axis.x(), dz = x.z() - axis.z();
+      const double r2 = dx * dx + dz * dz;
+      if (r2 < radius * radius) {
+        // Out along the radius through the node; with `came_from_m`, turned
+        // towards where the node came from the deeper it is (through the axis
+        // the radius says nothing, and neighbours may sit on either side).
+        double ox = dx, oz = dz;
+        if (!came_from_m.empty()) {
+          const double depth = 1.0 - std::sqrt(r2) / radius;  // 0 on the surface, 1 on the axis
+          const double fx = came_from_m[i].x() - axis.x(), fz = came_from_m[i].z() - axis.z();
+          const double f = std::hypot(fx, fz), own = std::sqrt(r2);
+          ox = (own > 0.0 ? (1.0 - depth) * dx / own : 0.0) + (f > 0.0 ? depth * fx / f : 0.0);
+          oz = (own > 0.0 ? (1.0 - depth) * dz / own : 0.0) + (f > 0.0 ? depth * fz / f : 0.0);
+        }
+        const double r = std::hypot(ox, oz);
+        // On the axis itself (never met in practice): out towards the fly end.
+        const Vec3 n = r > 0.0 ? Vec3(ox / r, 0.0, oz / r) : Vec3::UnitX();
+        x.x() = axis.x() + radius * n.x();
+        x.z() = axis.z() + radius * n.z();
+        if (velocities) v_m_s[i] = contact_velocity(v_m_s[i], pole_v, n, pole_->friction);
+        moved_this = true;
+      }
+    }
+    if (ground_ && x.y() < ground_->height_m) {
+      x.y() = ground_->height_m;
+      if (velocities)
+        v_m_s[i] = contact_velocity(v_m_s[i], Vec3::Zero(), Vec3::UnitY(), ground_->friction);
+      moved_this = true;
+    }
+    moved += moved_this ? 1 : 0;
+  }
+  if (pole_ && !links_.empty()) project_links(axis, pole_v, x_m, v_m_s, pinned);
+  return moved;
+}
+
+int Obstacles::settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m,
+                      std::span<const std::uint8_t> fixed, std::span<const Vec3> came_from_m,
+                      int rounds, int reach) const {
+  // Which nodes the projection moves: their box, widened by `reach`.
+  std::vector<Vec3> before(x_m.begin(), x_m.end());
+  const int moved = project(time_s, x_m, {}, fixed, came_from_m);
+  if (moved == 0 || rounds <= 0) return moved;
+  int j0 = lattice.rows, j1 = -1, k0 = lattice.cols, k1 = -1;
+  for (int j = 0; j < lattice.rows; ++j) {
+    for (int k = 0; k < lattice.cols; ++k) {
+      const std::size_t i = lattice.index(j, k);
+      if (x_m[i] == before[i]) continue;
+      j0 = std::min(j0, j), j1 = std::max(j1, j), k0 = std::min(k0, k), k1 = std::max(k1, k);
+    }
+  }
+  j0 = std::max(0, j0 - reach), j1 = std::min(lattice.rows - 1, j1 + reach);
+  k0 = std::max(0, k0 - reach), k1 = std::min(lattice.cols - 1, k1 + reach);
+  // Inverse masses, relative: the box's free nodes 1, the rest 0.
+  const auto w = [&](int j, int k) {
+    if (j < j0 || j > j1 || k < k0 || k > k1) return 0.0;
+    return fixed.empty() || !fixed[lattice.index(j, k)] ? 1.0 : 0.0;
+  };
+  const auto fiber = [&](int ja, int ka, int jb, int kb, double rest) {
+    const double wa = w(ja, ka), wb = w(jb, kb);
+    if (wa + wb == 0.0) return;
+    Vec3& a = x_m[lattice.index(ja, ka)];
+    Vec3& b = x_m[lattice.index(jb, kb)];
+    const Vec3 d = b - a;
+    const double length = d.norm();
+    if (length == 0.0) return;
+    const Vec3 correction = (length - rest) / ((wa + wb) * length) * d;
+    a += wa * correction;
+    b -= wb * correction;
+  };
+  // The box and one link around it (links from a fixed node into the box).
+  const int ja = std::max(0, j0 - 1), jb = std::min(lattice.rows - 1, j1 + 1);
+  const int ka = std::max(0, k0 - 1), kb = std::min(lattice.cols - 1, k1 + 1);
+  for (int round = 0; round < rounds; ++round) {
+    for (int j = ja; j <= jb; ++j) {
+      for (int k = ka; k <= kb; ++k) {
+        if (k < kb) fiber(j, k, j, k + 1, lattice.spacing_x_m);
+        if (j < jb) fiber(j, k, j + 1, k, lattice.spacing_y_m);
+      }
+    }
+    project(time_s, x_m, {}, fixed, came_from_m);
+  }
+  return moved;
+}
+
+double Obstacles::depth_m(double time_s, const Vec3& x_m) const {
+  double depth = 0.0;
+  if (pole_) {
+    const Vec3 axis = axis_point_m_ + pins_.offset_m(time_s);
+    const double r = std::hypot(x_m.x() - axis.x(), x_m.z() - axis.z());
+    depth = std::max(depth, pole_->radius_m - r);
+  }
+  if (ground_) depth = std::max(depth, ground_->height_m - x_m.y());
+  return depth;
+}
+
+}  // namespace flagsim::physics
