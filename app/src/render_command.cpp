@@ -170,6 +170,8 @@ RenderPlan plan_render(const RenderRequest& request, const Scene* scene, double 
                     request.output_flag, plan.output, fps, limits::kFps));
   plan.fps = fps;
   plan.pole = scene && scene->flag.pin == PinSet::kLeft;
+  if (scene && scene->solid_pole) plan.pole_radius_m = scene->solid_pole->radius_m;
+  if (scene && scene->ground) plan.ground_height_m = scene->ground->height_m;
   if (scene_render) {
     plan.width = scene_render->size_px[0];
     plan.height = scene_render->size_px[1];
@@ -276,7 +278,8 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
   // The range, against the file (the camera above still frames the whole run).
   const auto [first, last] =
       resolve_frame_range({plan.first_frame, plan.last_frame}, frames, h5_path);
-  options.ground_y_m = std::min(0.0, bounds.low.y() - 0.05);
+  // A solid ground is drawn where it is; otherwise a floor below the run.
+  options.ground_y_m = plan.ground_height_m.value_or(std::min(0.0, bounds.low.y() - 0.05));
   // --color: one scale for every drawn frame, 0 to the largest value among them.
   const auto field_of = [&](int t) -> std::vector<double> {
     if (plan.color == ColorBy::kStrain) return reader.node_strain(t);
@@ -327,6 +330,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
         plan.color == ColorBy::kNone ? std::vector<double>() : field_of(t);
     render::FrameView view{rows, cols, positions, std::nullopt, field};
     if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
+    view.pole_radius_m = plan.pole_radius_m;
     const Clock::time_point start = Clock::now();
     render::Image image = renderer.render(view);
     if (legend) render::draw_color_bar(image, legend->first, legend->second);

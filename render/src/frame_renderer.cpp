@@ -120,7 +120,7 @@ Image FrameRenderer::render(const FrameView& frame) {
   glShadeModel(GL_SMOOTH);
 
   draw_backdrop();
-  if (frame.pole_top_m) draw_pole(*frame.pole_top_m);
+  if (frame.pole_top_m) draw_pole(*frame.pole_top_m, frame.pole_radius_m);
   draw_cloth(frame);
   return context_.read_rgb();
 }
@@ -152,8 +152,9 @@ void FrameRenderer::draw_backdrop() const {
   glDisable(GL_POLYGON_OFFSET_LINE);
 }
 
-void FrameRenderer::draw_pole(const Vec3& top) const {
-  const double radius = 0.02, bottom = options_.ground_y_m;
+void FrameRenderer::draw_pole(const Vec3& top, double radius_m) const {
+  const double radius = radius_m;
+  const double bottom = options_.ground_y_m;
   glEnable(GL_LIGHTING);
   set_material(kPole);
   glBegin(GL_QUAD_STRIP);

@@ -36,6 +36,8 @@ struct FrameView {
   std::optional<Vec3> pole_top_m;
   /// [J*K] a per-node value to colour by (RenderOptions::color), or empty.
   std::span<const double> field;
+  /// The pole's radius, m; its surface touches the pole edge (axis at top.x - radius).
+  double pole_radius_m = 0.02;
 };
 
 /// Colours a per-node value on the shaded surface: [low, high] mapped through
@@ -66,7 +68,7 @@ class FrameRenderer {
 
  private:
   void draw_backdrop() const;
-  void draw_pole(const Vec3& top) const;
+  void draw_pole(const Vec3& top, double radius_m) const;
   void draw_cloth(const FrameView& frame);
   /// Every how many lattice lines the wireframe draws one.
   int wire_step(const FrameView& frame) const;

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# What contact with the pole costs (issue 31): the default scene (FRAMES frames,
+# default 150) without and with a solid pole ([pole] radius = 0.04 m), run
+# alternately ROUNDS times (default 3) so a drift of the machine hits both, and
+# the contact scenes once each. Prints per run the median ms/frame of the
+# whole frame and of each stage, from /stats, and per configuration the median
+# over its rounds; the ratio with/without is the figure to quote.
+# Usage: bench/contact_cost.sh [FRAMES] [ROUNDS]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+frames="${1:-150}"
+rounds="${2:-3}"
+out="$(mktemp -d)"
+trap 'rm -rf "$out"' EXIT
+run() {  # NAME, then the run's arguments after its output
+  local name="$1"
+  shift
+  "$root/build/flag-sim" run --quiet -o "$out/$name.h5" "$@" >/dev/null
+}
+for r in $(seq 1 "$rounds"); do
+  run "default_r$r" --frames "$frames"
+  run "pole_r$r" --frames "$frames" --set pole.radius=0.04
+done
+for scene in pole_wrap pole_calm banner_ground; do
+  run "$scene" "$root/scenes/contact/$scene.toml"
+done
+/usr/bin/python3 - "$out" "$rounds" <<'PY'
+import sys
+import h5py
+import numpy as np
+out, rounds = sys.argv[1], int(sys.argv[2])
+def stages(name):
+    with h5py.File(f"{out}/{name}.h5", "r") as f:
+        s = f["/stats/stage_seconds"]
+        names = [n.decode() if isinstance(n, bytes) else str(n) for n in s.attrs["stages"]]
+        row = {n: 1e3 * float(np.median(s[1:, i])) for i, n in enumerate(names)}
+        row["whole"] = 1e3 * float(np.median(f["/stats/wall_seconds"][1:]))
+    return row
+def show(label, row):
+    parts = "  ".join(f"{k} {v:.2f}" for k, v in row.items())
+    print(f"{label:<14} {parts}")
+runs = {}
+for config in ("default", "pole"):
+    runs[config] = [stages(f"{config}_r{r}") for r in range(1, rounds + 1)]
+    for r, row in enumerate(runs[config], 1):
+        show(f"{config} {r}", row)
+whole = {c: float(np.median([row["whole"] for row in rows])) for c, rows in runs.items()}
+print(f"whole frame, median over rounds: default {whole['default']:.2f} ms, "
+      f"pole.radius = 0.04 {whole['pole']:.2f} ms, ratio {whole['pole'] / whole['default']:.2f}")
+for scene in ("pole_wrap", "pole_calm", "banner_ground"):
+    show(scene, stages(scene))
+PY
