@@ -57,7 +57,8 @@ class Obstacles {
   /// nodes within `reach` links of a moved one; fixed nodes and those outside
   /// the box stay put). So the excess length a fiber has between coarse nodes
   /// that a solid cuts goes round the solid instead of into a stretch.
-  /// Returns the number of nodes the first projection moved.
+  /// Returns the number of nodes the first projection moved. For Obstacles
+  /// made by of(scene) (nodes only, no links).
   int settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m,
              std::span<const std::uint8_t> fixed, std::span<const Vec3> came_from_m, int rounds,
              int reach) const;
