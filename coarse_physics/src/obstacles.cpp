@@ -184,7 +184,8 @@ int Obstacles::settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m
   // it do not move in a sweep): over the whole lattice it was most of the
   // pass's time when the box is a strip along the pole.
   const auto row_part = [&](auto span, int j) {
-    return span.empty() ? span : span.subspan(lattice.index(j, ka), std::size_t(kb - ka + 1));
+    return span.empty() ? span
+                        : span.subspan(lattice.index(j, ka), std::size_t(kb) - std::size_t(ka) + 1);
   };
   for (int round = 0; round < rounds; ++round) {
     for (int j = ja; j <= jb; ++j) {
