@@ -9,8 +9,8 @@
 #                distance of the flap envelope (per-node std of the
 #                out-of-plane motion) and of the mean shape to the finest
 #                lattice, beside the seed-to-seed spread (bench/flag_metrics.py).
-#   hybrid       the default hybrid (129x193 dense) at coarse 5x7, 9x13 and
-#                17x25, SEEDS each, against the finest mass-spring group
+#   hybrid       the default hybrid (129x193 dense) at coarse 5x7, 9x13, 17x25
+#                and 33x49, SEEDS each, against the finest mass-spring group
 #                (run `convergence` first in the same OUT_DIR).
 #   plot         OUT_DIR/accuracy_cost.png: the hybrid lattices and the coarser
 #                references against mass-spring at 129x193, each figure's
@@ -76,7 +76,7 @@ convergence() {
 
 hybrid() {
   local groups=()
-  for coarse in 5,7 9,13 17,25; do
+  for coarse in 5,7 9,13 17,25 33,49; do
     local tag="hybrid_${coarse/,/x}"
     for s in "${seeds[@]}"; do
       run "${tag}_s$s" "$frames" --set "flag.coarse=[$coarse]" --seed "$s"
@@ -119,8 +119,8 @@ laws() {
 # mass-spring at 129x193, error over ms/frame (after `convergence` and `hybrid`).
 plot() {
   local groups=()
-  for tag in hybrid_5x7 hybrid_9x13 hybrid_17x25 mass-spring_33x49 mass-spring_65x97 xpbd_33x49 \
-    xpbd_65x97 xpbd_129x193 mass-spring_129x193; do
+  for tag in hybrid_5x7 hybrid_9x13 hybrid_17x25 hybrid_33x49 mass-spring_33x49 mass-spring_65x97 \
+    xpbd_33x49 xpbd_65x97 xpbd_129x193 mass-spring_129x193; do
     # shellcheck disable=SC2207
     groups+=(--group "$tag" $(files "$tag"))
   done
