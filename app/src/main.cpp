@@ -260,6 +260,8 @@ int run_main(int argc, char** argv) {
   sweep_cmd->add_option("--infill", sweep.infill, "Infill solvers side by side: smooth,paper");
   sweep_cmd->add_option("--backend", sweep.backend,
                         "Coarse physics side by side: spring-damper,bullet,implicit,xpbd");
+  sweep_cmd->add_option("--pole-radius", sweep.pole_radius,
+                        "Solid pole radii side by side, m; 0: the scene's own pole, e.g. 0,0.04");
   sweep_cmd->add_option("--references", sweep.references,
                         "Full-lattice reference rows: mass-spring (default; every error is "
                         "against it), plus any of bullet,implicit,xpbd");

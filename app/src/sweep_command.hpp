@@ -11,6 +11,9 @@ namespace flagsim::app {
 struct SweepOptions {
   std::string scene_path;
   std::string coarse, substeps, relax, infill, backend;  ///< comma-separated lists
+  /// Comma-separated solid pole radii, m ([pole] radius); 0: the scene's own
+  /// pole (contact on and off side by side: --pole-radius 0,0.04).
+  std::string pole_radius;
   /// Full-lattice modes run as reference rows, mass-spring among them (the
   /// errors are against it).
   std::string references = "mass-spring";

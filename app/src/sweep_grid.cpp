@@ -56,6 +56,21 @@ std::string parse_name(const std::string& flag, const std::string& item, std::st
                               fmt::join(names, ", "), last));
 }
 
+// A radius in m, 0 (the scene's own pole) or in (0, 1], kept as typed (it
+// goes into --set as a TOML number).
+std::string parse_radius(const std::string& flag, const std::string& item) {
+  static const std::regex pattern(R"(^\s*(\d{1,3}(\.\d{1,9})?|\.\d{1,9})\s*$)");
+  std::smatch m;
+  if (!std::regex_match(item, m, pattern) || std::stod(m[1]) > 1.0)
+    throw UserError(fmt::format(
+        "{} {}: expected pole radii in m from 0 (the scene's own pole) to 1, e.g. 0,0.04", flag,
+        item));
+  std::string number = m[1];
+  if (number.front() == '.') number = fmt::format("0{}", number);
+  if (number.find('.') == std::string::npos) number += ".0";  // a TOML float, as the key reads
+  return number;
+}
+
 std::string parse_infill_solver(const std::string& flag, const std::string& item) {
   return parse_name(flag, item, "infill solvers", kInfillSolverNames);
 }
@@ -103,25 +118,32 @@ std::vector<SweepPoint> sweep_grid(const SweepOptions& o) {
   const auto backends = o.backend.empty()
                             ? std::vector<std::string>{""}
                             : parse_list<std::string>("--backend", o.backend, parse_backend);
+  // Empty: the scene's own pole.
+  const auto radii = o.pole_radius.empty()
+                         ? std::vector<std::string>{"0"}
+                         : parse_list<std::string>("--pole-radius", o.pole_radius, parse_radius);
   for (const auto& [jc, kc] : coarse)
     for (const std::string& backend : backends)
-      for (int s : substeps)
-        for (const std::string& solver : infill)
-          // The relaxation cap is the paper solver's; the smooth one gets one point.
-          for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
-            SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
-                         {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
-            const auto add = [&p](std::string set, const std::string& label) {
-              p.sets.push_back(std::move(set));
-              p.label += " " + label;
-            };
-            if (!backend.empty()) add(fmt::format("solver.backend=\"{}\"", backend), backend);
-            if (s > 0) add(fmt::format("solver.substeps={}", s), fmt::format("substeps {}", s));
-            if (!solver.empty()) add(fmt::format("infill.solver=\"{}\"", solver), solver);
-            if (r > 0)
-              add(fmt::format("infill.relax_iterations={}", r), fmt::format("relax {}", r));
-            points.push_back(p);
-          }
+      for (const std::string& radius : radii)
+        for (int s : substeps)
+          for (const std::string& solver : infill)
+            // The relaxation cap is the paper solver's; the smooth one gets one point.
+            for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
+              SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
+                           {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
+              const auto add = [&p](std::string set, const std::string& label) {
+                p.sets.push_back(std::move(set));
+                p.label += " " + label;
+              };
+              if (!backend.empty()) add(fmt::format("solver.backend=\"{}\"", backend), backend);
+              if (std::stod(radius) > 0.0)
+                add(fmt::format("pole.radius={}", radius), fmt::format("pole {} m", radius));
+              if (s > 0) add(fmt::format("solver.substeps={}", s), fmt::format("substeps {}", s));
+              if (!solver.empty()) add(fmt::format("infill.solver=\"{}\"", solver), solver);
+              if (r > 0)
+                add(fmt::format("infill.relax_iterations={}", r), fmt::format("relax {}", r));
+              points.push_back(p);
+            }
   return points;
 }
 

@@ -16,9 +16,9 @@ struct SweepPoint {
 
 /// Point 0: the mass-spring reference; then the other full-lattice references
 /// of --references (bullet, implicit, xpbd; default none); then the hybrid grid, coarse lattice
-/// slowest, then backend, substeps, infill solver, relaxation fastest (the paper solver's cap only:
-/// the smooth infill gets one point). An empty list keeps the scene's own value. Throws UserError
-/// naming the flag and the item it cannot read; --coarse is required.
+/// slowest, then backend, pole radius, substeps, infill solver, relaxation fastest (the paper
+/// solver's cap only: the smooth infill gets one point). An empty list keeps the scene's own value.
+/// Throws UserError naming the flag and the item it cannot read; --coarse is required.
 std::vector<SweepPoint> sweep_grid(const SweepOptions& o);
 
 }  // namespace flagsim::app

@@ -61,6 +61,33 @@ TEST(SweepGrid, TheRelaxationCapMultipliesOnlyThePaperSolversPoints) {
   EXPECT_EQ(grid.back().sets.back(), "infill.relax_iterations=8000");
 }
 
+// Issue 31: contact on and off side by side. 0 leaves the scene's own pole.
+TEST(SweepGrid, PoleRadiiCrossTheHybridPointsAndZeroKeepsTheScenesPole) {
+  SweepOptions o = lists("9x13", "", "", "", "spring-damper,implicit");
+  o.pole_radius = "0, .04,1";
+  const std::vector<SweepPoint> grid = sweep_grid(o);
+  std::vector<std::string> labels;
+  for (std::size_t i = 1; i < grid.size(); ++i) labels.push_back(grid[i].label);
+  EXPECT_EQ(labels, (std::vector<std::string>{
+                        "hybrid 9x13 spring-damper", "hybrid 9x13 spring-damper pole 0.04 m",
+                        "hybrid 9x13 spring-damper pole 1.0 m", "hybrid 9x13 implicit",
+                        "hybrid 9x13 implicit pole 0.04 m", "hybrid 9x13 implicit pole 1.0 m"}));
+  EXPECT_EQ(grid[2].sets,
+            (std::vector<std::string>{"scene.mode=\"hybrid\"", "flag.coarse=[9,13]",
+                                      "solver.backend=\"spring-damper\"", "pole.radius=0.04"}));
+  for (const char* bad : {"0.04,-1", "2", "0.04,", "4cm"}) {
+    o.pole_radius = bad;
+    try {
+      sweep_grid(o);
+      ADD_FAILURE() << bad << ": accepted";
+    } catch (const UserError& e) {
+      EXPECT_NE(std::string(e.what()).find("--pole-radius"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("expected pole radii in m"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(SweepGrid, AnItemItCannotReadIsNamedWithItsFlag) {
   const auto message = [](const SweepOptions& o) {
     try {
