@@ -66,8 +66,12 @@ void Obstacles::project_links(const Vec3& axis_m, const Vec3& pole_v_m_s, std::s
     const double dx = x_m[b].x() - x_m[a].x(), dz = x_m[b].z() - x_m[a].z();
     const double length2 = dx * dx + dz * dz;
     if (length2 == 0.0) continue;
-    const double t = std::clamp(-(ax * dx + az * dz) / length2, 0.0, 1.0);
-    if (t == 0.0 || t == 1.0) continue;  // closest at an end: the node pass's
+    // Most links are far from the pole: rejected without a division. The
+    // closest point is inside the segment when 0 < -a.d < |d|^2 (at an end it
+    // is the node pass's), and its distance^2 is (a x d)^2 / |d|^2.
+    const double along = -(ax * dx + az * dz), across = ax * dz - az * dx;
+    if (along <= 0.0 || along >= length2 || across * across >= radius * radius * length2) continue;
+    const double t = along / length2;
     const double cx = ax + t * dx, cz = az + t * dz;
     const double distance2 = cx * cx + cz * cz;
     if (distance2 >= radius * radius) continue;
