@@ -94,7 +94,8 @@ INSTANTIATE_TEST_SUITE_P(
         ContactRun{"pole_wrap", {"--mode", "implicit", "--set", "flag.fine=[17,25]"}, true},
         ContactRun{"pole_wrap", {"--mode", "xpbd", "--set", "flag.fine=[17,25]"}, true},
         ContactRun{"pole_wrap", {"--mode", "bullet", "--set", "flag.fine=[9,13]"}, true},
-        ContactRun{"pole_wrap", {"--set", "solver.backend=\"implicit\""}, true}),
+        ContactRun{"pole_wrap", {"--set", "solver.backend=\"implicit\""}, true},
+        ContactRun{"pole_wrap", {"--set", "solver.backend=\"bullet\""}, true}),
     [](const auto& param_info) {
       return param_info.param.scene + "_" + std::to_string(param_info.index);
     });

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -92,6 +93,38 @@ TEST(Obstacles, AShakenPoleMovesWithItsPins) {
   solids->project(0.0, x, v, {});
   EXPECT_NEAR(x[0].z(), 0.1, 1e-15);
   EXPECT_NEAR(v[0].z(), 2.0 * M_PI * 0.2, 1e-12);
+}
+
+// A link whose ends are both outside the pole but whose segment cuts it is
+// pushed out, and project() says something moved (Bullet writes its nodes back
+// only then: it used to drop these corrections, and its coarse links cut the
+// pole by up to 14 mm of 40).
+TEST(Obstacles, ALinkThroughThePoleIsPushedOutAndCounted) {
+  Scene scene = scene_with(SolidPole{0.1, 0.0}, std::nullopt);
+  scene.flag.fine_rows = 2;
+  scene.flag.fine_cols = 2;
+  const Lattice lattice = Lattice::rectangle(2, 2, 1.0, 1.0, scene.flag.origin_m);
+  const auto solids = Obstacles::of(scene, lattice);
+  ASSERT_TRUE(solids.has_value());
+  // Axis at x = -0.1, z = 0. Nodes 0 and 1 (a row link) on either side of the
+  // pole, 0.15 m from the axis, their segment 0.05 m from it; nodes 2 and 3 far.
+  std::vector<Vec3> x = {Vec3(-0.1, 1.0, 0.15), Vec3(-0.1, 1.0, -0.15), Vec3(2.0, 0.0, 2.0),
+                         Vec3(3.0, 0.0, 2.0)};
+  const std::vector<Vec3> before = x;
+  EXPECT_GE(solids->project(0.0, x, {}, {}), 1);
+  // The segment now clears the disc (to rounding), both ends moved the same way.
+  const double dx = x[1].x() - x[0].x(), dz = x[1].z() - x[0].z();
+  const double ax = x[0].x() + 0.1, az = x[0].z();
+  const double t = std::clamp(-(ax * dx + az * dz) / (dx * dx + dz * dz), 0.0, 1.0);
+  EXPECT_GE(std::hypot(ax + t * dx, az + t * dz), 0.1 - 1e-12);
+  EXPECT_GT(x[0].x(), before[0].x());
+  EXPECT_GT(x[1].x(), before[1].x());
+  EXPECT_EQ(x[2], before[2]);
+  EXPECT_EQ(x[3], before[3]);
+  // Nothing inside and no link through: nothing moved, 0.
+  std::vector<Vec3> clear = {Vec3(0.5, 1.0, 0.15), Vec3(0.5, 1.0, -0.15), Vec3(2.0, 0.0, 2.0),
+                             Vec3(3.0, 0.0, 2.0)};
+  EXPECT_EQ(solids->project(0.0, clear, {}, {}), 0);
 }
 
 }  // namespace

@@ -40,7 +40,8 @@ class Obstacles {
 
   /// Projects the nodes not `pinned` (all when it is empty) out of the solids at
   /// time t (the pole moves with the pins), positions [n] m, velocities [n]
-  /// m/s (may be empty: positions only). Returns the number of nodes moved.
+  /// m/s (may be empty: positions only). Returns how many nodes the node pass
+  /// moved plus how many links the link pass pushed out (0: nothing moved).
   /// `came_from_m` [n] (may be empty): where each node was before the move
   /// being corrected, outside the solids; a node found inside the pole then
   /// goes out on the side it came from, not the side nearest to it (a lattice
@@ -70,8 +71,8 @@ class Obstacles {
   std::optional<SolidPole> pole_;
   std::optional<Ground> ground_;
   /// Pushes the links that cut the pole's disc out of it (see the top).
-  void project_links(const Vec3& axis_m, const Vec3& pole_v_m_s, std::span<Vec3> x_m,
-                     std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned) const;
+  int project_links(const Vec3& axis_m, const Vec3& pole_v_m_s, std::span<Vec3> x_m,
+                    std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned) const;
 
   Vec3 axis_point_m_ = Vec3::Zero();                 ///< on the pole's axis, at rest
   std::vector<std::array<std::uint32_t, 2>> links_;  ///< node pairs kept out of the pole
