@@ -67,22 +67,31 @@ TEST_P(ContactScene, NoNodeEntersASolidOnAnyFrame) {
   const auto deepest = [&](const std::vector<Vec3>& nodes) {
     return c.pole ? deepest_in_pole(nodes) : deepest_below_ground(nodes);
   };
-  double closest = -1.0;  // the least distance outside a solid over the run (negative)
+  // How near the solid the free cloth came over the run (negative: outside).
+  // Not the pinned edge, which sits on the pole's surface from the start, nor
+  // frame 0, where the banner's bottom edge starts on the ground.
+  double closest = -1.0;
+  const std::size_t cols = std::size_t(reader.cols());
   for (int t = 0; t < reader.frame_count(); ++t) {
-    const double dense = deepest(reader.positions(t));
-    EXPECT_LE(dense, kSurfaceSlack)
-        << "frame " << t << ": a dense node " << dense * 1000 << " mm inside";
+    const std::vector<Vec3> dense = reader.positions(t);
+    const double inside = deepest(dense);
+    EXPECT_LE(inside, kSurfaceSlack)
+        << "frame " << t << ": a dense node " << inside * 1000 << " mm inside";
     const std::vector<Vec3> coarse = reader.coarse_positions(t);
     if (!coarse.empty()) {
-      const double inside = deepest(coarse);
-      EXPECT_LE(inside, kSurfaceSlack)
-          << "frame " << t << ": a coarse node " << inside * 1000 << " mm inside";
+      const double coarse_inside = deepest(coarse);
+      EXPECT_LE(coarse_inside, kSurfaceSlack)
+          << "frame " << t << ": a coarse node " << coarse_inside * 1000 << " mm inside";
     }
-    closest = std::max(closest, dense);
+    if (t == 0) continue;
+    std::vector<Vec3> free;
+    for (std::size_t i = 0; i < dense.size(); ++i)
+      if (!c.pole || i % cols != 0) free.push_back(dense[i]);
+    closest = std::max(closest, deepest(free));
   }
   // The scenes are built to press the cloth onto the solid: a run that never
   // touched it would pass the bound above without testing anything.
-  EXPECT_GT(closest, -1e-4) << "the cloth never came within 0.1 mm of the solid";
+  EXPECT_GT(closest, -1e-4) << "the free cloth never came within 0.1 mm of the solid";
 }
 
 INSTANTIATE_TEST_SUITE_P(
