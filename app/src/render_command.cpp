@@ -330,7 +330,7 @@ std::string render_file(const std::string& h5_path, const RenderPlan& plan) {
         plan.color == ColorBy::kNone ? std::vector<double>() : field_of(t);
     render::FrameView view{rows, cols, positions, std::nullopt, field};
     if (plan.pole) view.pole_top_m = positions[0];  // node (0, 0): the top of the pole edge
-    view.pole_radius_m = plan.pole_radius_m;
+    if (plan.pole_radius_m) view.pole_radius_m = *plan.pole_radius_m;
     const Clock::time_point start = Clock::now();
     render::Image image = renderer.render(view);
     if (legend) render::draw_color_bar(image, legend->first, legend->second);

@@ -47,8 +47,8 @@ struct RenderPlan {
   render::Style style = render::Style::kShaded;
   render::Image texture;  ///< empty: the built-in pattern
   bool pole = false;      ///< the cloth hangs from its left edge (flag.pin = "left")
-  /// The pole's drawn radius, m: the solid pole's ([pole] radius), else 2 cm.
-  double pole_radius_m = 0.02;
+  /// A solid pole's radius ([pole] radius), m; nullopt: the renderer's own.
+  std::optional<double> pole_radius_m;
   std::optional<double> ground_height_m;       ///< a solid ground ([ground] height), m
   std::optional<render::Container> container;  ///< the video's; nullopt: PNG frames
   double fps = 30.0;                           ///< of the video: the frames' own rate

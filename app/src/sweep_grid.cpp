@@ -56,8 +56,8 @@ std::string parse_name(const std::string& flag, const std::string& item, std::st
                               fmt::join(names, ", "), last));
 }
 
-// A radius in m, 0 (the scene's own pole) or in (0, 1], kept as typed (it
-// goes into --set as a TOML number).
+// A radius in m from 0 to 1, as the TOML float --set takes ("0.04"), or ""
+// for 0 (the scene's own pole).
 std::string parse_radius(const std::string& flag, const std::string& item) {
   static const std::regex pattern(R"(^\s*(\d{1,3}(\.\d{1,9})?|\.\d{1,9})\s*$)");
   std::smatch m;
@@ -65,6 +65,7 @@ std::string parse_radius(const std::string& flag, const std::string& item) {
     throw UserError(fmt::format(
         "{} {}: expected pole radii in m from 0 (the scene's own pole) to 1, e.g. 0,0.04", flag,
         item));
+  if (std::stod(m[1]) == 0.0) return "";
   std::string number = m[1];
   if (number.front() == '.') number = fmt::format("0{}", number);
   if (number.find('.') == std::string::npos) number += ".0";  // a TOML float, as the key reads
@@ -120,7 +121,7 @@ std::vector<SweepPoint> sweep_grid(const SweepOptions& o) {
                             : parse_list<std::string>("--backend", o.backend, parse_backend);
   // Empty: the scene's own pole.
   const auto radii = o.pole_radius.empty()
-                         ? std::vector<std::string>{"0"}
+                         ? std::vector<std::string>{""}
                          : parse_list<std::string>("--pole-radius", o.pole_radius, parse_radius);
   for (const auto& [jc, kc] : coarse)
     for (const std::string& backend : backends)
@@ -136,7 +137,7 @@ std::vector<SweepPoint> sweep_grid(const SweepOptions& o) {
                 p.label += " " + label;
               };
               if (!backend.empty()) add(fmt::format("solver.backend=\"{}\"", backend), backend);
-              if (std::stod(radius) > 0.0)
+              if (!radius.empty())
                 add(fmt::format("pole.radius={}", radius), fmt::format("pole {} m", radius));
               if (s > 0) add(fmt::format("solver.substeps={}", s), fmt::format("substeps {}", s));
               if (!solver.empty()) add(fmt::format("infill.solver=\"{}\"", solver), solver);

@@ -5,13 +5,10 @@
 #include <cmath>
 #include <utility>
 
+#include "flagsim/core/scene.hpp"
+
 namespace flagsim::physics {
 namespace {
-
-/// Nodes of a side of `length_m` cut into panels of at most `panel_m`.
-int panel_nodes(double length_m, double panel_m) {
-  return 1 + std::max(1, int(std::ceil(length_m / panel_m - 1e-9)));
-}
 
 /// One direction's weights from `cloth_nodes` onto `panel_nodes` (fewer):
 /// w[p][i] = integral of hat_p(xi) phi_i(xi) over the side, normalised per
@@ -49,6 +46,7 @@ AirPanels::Axis axis_weights(int cloth_nodes, int panel_nodes) {
   }
   AirPanels::Axis axis;
   axis.range.assign(std::size_t(panel_nodes), {cloth_nodes, -1});
+  axis.panels_of.assign(std::size_t(cloth_nodes), {panel_nodes, -1});
   for (int p = 0; p < panel_nodes; ++p) {
     double sum = 0.0;
     for (int i = 0; i < cloth_nodes; ++i) sum += w(p, i);
@@ -58,16 +56,11 @@ AirPanels::Axis axis_weights(int cloth_nodes, int panel_nodes) {
       auto& [first, last] = axis.range[std::size_t(p)];
       first = std::min(first, i);
       last = std::max(last, i);
+      auto& [lowest, highest] = axis.panels_of[std::size_t(i)];
+      lowest = std::min(lowest, p);
+      highest = std::max(highest, p);
     }
   }
-  axis.panels_of.assign(std::size_t(cloth_nodes), {panel_nodes, -1});
-  for (int i = 0; i < cloth_nodes; ++i)
-    for (int p = 0; p < panel_nodes; ++p) {
-      if (w(p, i) <= 0.0) continue;
-      auto& [first, last] = axis.panels_of[std::size_t(i)];
-      first = std::min(first, p);
-      last = std::max(last, p);
-    }
   axis.table = std::move(table);
   return axis;
 }
@@ -78,7 +71,7 @@ AirPanels::AirPanels(const Lattice& cloth, double panel_m)
     : panels_(cloth), cloth_rows_(cloth.rows), cloth_cols_(cloth.cols) {
   const double height = cloth.spacing_y_m * (cloth.rows - 1);
   const double width = cloth.spacing_x_m * (cloth.cols - 1);
-  const int rows = panel_nodes(height, panel_m), cols = panel_nodes(width, panel_m);
+  const int rows = air_panel_nodes(height, panel_m), cols = air_panel_nodes(width, panel_m);
   // Every hat holds a cloth node when the cloth is at least as fine as the
   // panels in both directions; otherwise the panels are the cloth's nodes.
   if (rows >= cloth.rows || cols >= cloth.cols) return;

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 #include <utility>
 
@@ -159,10 +158,8 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
     const int cols = hybrid ? (*scene.flag.coarse)[1] : scene.flag.fine_cols;
     const double panel = scene.wind->panel_m;
     // As AirPanels does: the cloth is its own panel lattice unless it is finer both ways.
-    const auto panel_nodes = [&](double length) {
-      return 1 + std::max(1, int(std::ceil(length / panel - 1e-9)));
-    };
-    if (panel_nodes(scene.flag.height_m) < rows && panel_nodes(scene.flag.width_m) < cols)
+    if (air_panel_nodes(scene.flag.height_m, panel) < rows &&
+        air_panel_nodes(scene.flag.width_m, panel) < cols)
       fail_at(
           root, "solver.linear",
           fmt::format("\"cholesky\" assembles the step's matrix from each node's two-link "

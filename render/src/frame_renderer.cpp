@@ -152,8 +152,7 @@ void FrameRenderer::draw_backdrop() const {
   glDisable(GL_POLYGON_OFFSET_LINE);
 }
 
-void FrameRenderer::draw_pole(const Vec3& top, double radius_m) const {
-  const double radius = radius_m;
+void FrameRenderer::draw_pole(const Vec3& top, double radius) const {
   const double bottom = options_.ground_y_m;
   glEnable(GL_LIGHTING);
   set_material(kPole);

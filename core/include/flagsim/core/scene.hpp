@@ -6,6 +6,7 @@
 // a stage is built for it only then (contract: "Scene file").
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -124,6 +125,13 @@ struct Wind {
   std::optional<Gusts> gusts;
   std::optional<Turbulence> turbulence;
 };
+
+/// Nodes of the air's panel lattice along a side of `length_m` cut into panels
+/// of at most `panel_m` (at least 2): AirPanels' count, and the scene checks'
+/// when they ask whether a cloth is finer than its panels.
+inline int air_panel_nodes(double length_m, double panel_m) {
+  return 1 + std::max(1, int(std::ceil(length_m / panel_m - 1e-9)));
+}
 
 /// [bending]: bending rigidity of the cloth in the coarse physics.
 struct Bending {

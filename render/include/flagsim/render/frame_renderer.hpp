@@ -36,7 +36,8 @@ struct FrameView {
   std::optional<Vec3> pole_top_m;
   /// [J*K] a per-node value to colour by (RenderOptions::color), or empty.
   std::span<const double> field;
-  /// The pole's radius, m; its surface touches the pole edge (axis at top.x - radius).
+  /// The pole's radius, m (a solid pole's, else a flagpole's 2 cm); its
+  /// surface touches the pole edge (axis at top.x - radius).
   double pole_radius_m = 0.02;
 };
 
@@ -68,7 +69,7 @@ class FrameRenderer {
 
  private:
   void draw_backdrop() const;
-  void draw_pole(const Vec3& top, double radius_m) const;
+  void draw_pole(const Vec3& top, double radius) const;
   void draw_cloth(const FrameView& frame);
   /// Every how many lattice lines the wireframe draws one.
   int wire_step(const FrameView& frame) const;
