@@ -33,6 +33,18 @@ void Progress::update(int frame, double time_s, double ms_per_frame) {
   std::fflush(stderr);
 }
 
+bool Progress::take(const hybrid::Simulation& /*simulation*/, const hybrid::CheckedFrame& frame) {
+  const auto now = std::chrono::steady_clock::now();
+  if (first_taken_ < 0) {
+    first_taken_ = frame.index;
+    first_start_ = now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>(frame.wall_s));
+  }
+  const double wall_s = std::chrono::duration<double>(now - first_start_).count();
+  update(frame.index, frame.time_s, 1e3 * wall_s / (frame.index - first_taken_ + 1));
+  return true;
+}
+
 void Progress::done() {
   if (enabled_ && drawn_) fmt::print(stderr, "\r{:{}}\r", "", 72 + label_.size());
   drawn_ = false;

@@ -8,9 +8,12 @@
 #include <string>
 #include <utility>
 
+#include "flagsim/hybrid/frame_runner.hpp"
+
 namespace flagsim::app {
 
-class Progress {
+/// Also a sink of a run of frames (hybrid::run_frames): each good frame updates the line.
+class Progress final : public hybrid::FrameSink {
  public:
   /// Shown only when `enabled` (stderr is a terminal and --quiet is not given).
   /// `label` leads the line ("reference (mass-spring)"); empty: none.
@@ -21,6 +24,9 @@ class Progress {
   /// a second. `ms_per_frame` (the run's mean) is shown until there is a
   /// recent rate to show.
   void update(int frame, double time_s, double ms_per_frame);
+  /// update() after each frame of a run, with the mean wall time of its frames
+  /// so far, each counted from its start until the next frame starts.
+  bool take(const hybrid::Simulation& simulation, const hybrid::CheckedFrame& frame) override;
   /// Clears the line.
   void done();
 
@@ -32,6 +38,9 @@ class Progress {
   std::chrono::steady_clock::time_point last_draw_{};
   /// (when, frame) of the updates of the last kWindow, oldest first.
   std::deque<std::pair<std::chrono::steady_clock::time_point, int>> recent_;
+  /// take(): the first frame taken and when it started.
+  int first_taken_ = -1;
+  std::chrono::steady_clock::time_point first_start_{};
 };
 
 }  // namespace flagsim::app

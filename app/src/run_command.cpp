@@ -21,6 +21,7 @@
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "flagsim/data/output_reader.hpp"
+#include "flagsim/hybrid/frame_runner.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
@@ -216,6 +217,85 @@ RunStatus status_of(const data::OutputReader& source) {
   return {state.value_or(RunState::kInterrupted), source.attribute("status_reason")};
 }
 
+// The run's file as a sink of its frames: the coarse trajectory of every
+// frame, every output.every-th frame with its statistics, and the checkpoints.
+class FileSink final : public hybrid::FrameSink {
+ public:
+  FileSink(const Scene& scene, data::FrameWriter& writer, StageTimes& times, int output_stage,
+           bool refining, bool resuming, std::size_t series)
+      : scene_(scene),
+        writer_(writer),
+        times_(times),
+        output_stage_(output_stage),
+        refining_(refining),
+        checkpointed_(resuming),
+        series_(series) {}
+
+  bool take(const hybrid::Simulation& simulation, const hybrid::CheckedFrame& frame) override {
+    if (!scene_.output.dense) writer_.append_trajectory(simulation.coarse_positions());
+    max_strain_ = std::max(max_strain_, frame.strain.max);
+    if (frame.index % scene_.output.every != 0) return true;
+    if (auto room = writer_.out_of_room()) {  // stop while the file is whole
+      full_ = *room;
+      return false;
+    }
+    if (const std::optional<infill::FillReport> report = simulation.infill_report()) {
+      series_ = {report->converged ? 1.0 : 0.0, report->residual, double(report->iterations),
+                 report->coarse_offset_m};
+      unconverged_frames_ += report->converged ? 0 : 1;
+      worst_residual_ = std::max(worst_residual_, report->residual);
+    }
+    const data::FrameStats stats{frame.strain.max,
+                                 frame.strain.mean,
+                                 times_.seconds(),
+                                 seconds_since(since_write_),
+                                 simulation.kinetic_energy_j(),
+                                 series_};
+    // The state this frame ends in, for a run that stops inside a later frame
+    // (a signal, SIGKILL): at the first frame (which fixes where its datasets
+    // lie in the file), then before a flush once a second of wall time has
+    // passed (1.2 MB on the default scene takes 1-4 ms), and at the end.
+    if (scene_.output.checkpoint && !refining_ &&
+        (!checkpointed_ ||
+         (writer_.flushes_next() && seconds_since(last_checkpoint_) >= kCheckpointSeconds))) {
+      checkpointed_ = true;
+      last_checkpoint_ = std::chrono::steady_clock::now();
+      ScopedStageTimer timer(times_, output_stage_);
+      const hybrid::SimulationState now = simulation.state();
+      writer_.write_checkpoint(checkpoint_of(now, writer_.frames_written() + 1,
+                                             scene_.output.dense ? 0 : frame.index + 1));
+    }
+    // Frame times are n / fps exactly, not the sum of the substeps.
+    writer_.write_frame(frame.time_s,
+                        {simulation.positions(), simulation.velocities(), frame.node_strain,
+                         simulation.coarse_positions()},
+                        stats);
+    times_.reset();
+    since_write_ = std::chrono::steady_clock::now();
+    return true;
+  }
+
+  double max_strain() const { return max_strain_; }
+  int unconverged_frames() const { return unconverged_frames_; }
+  double worst_residual() const { return worst_residual_; }
+  /// Why take() refused a frame: the disk is full.
+  const std::string& full() const { return full_; }
+
+ private:
+  const Scene& scene_;
+  data::FrameWriter& writer_;
+  StageTimes& times_;
+  int output_stage_;
+  bool refining_;
+  bool checkpointed_;  // run --resume: the resumed file's checkpoint is copied
+  std::chrono::steady_clock::time_point since_write_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
+  std::vector<double> series_;  // the infill's account of the frame (RunInfo::series)
+  double max_strain_ = 0.0, worst_residual_ = 0.0;
+  int unconverged_frames_ = 0;
+  std::string full_;
+};
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
@@ -370,12 +450,11 @@ int run_command(const RunOptions& options) {
                    {"infill_residual", "1"},
                    {"infill_iterations", "1"},
                    {"coarse_offset", "m"}};
-  std::vector<double> series(info.series.size());
   int unconverged_frames = 0;
   double worst_residual = 0.0;
   const Lattice& lattice = simulation->lattice();
   data::FrameWriter writer(output_path, lattice, info, scene.output.flush_every);
-  double max_strain_seen = 0.0, total_wall_s = 0.0;
+  double max_strain_seen = 0.0;
   if (resuming) {  // the frames up to the checkpoint's, as they are, and the checkpoint
     try {
       writer.copy_frames(options.resume_input, resume_point->written_frames,
@@ -402,86 +481,41 @@ int run_command(const RunOptions& options) {
   const int frames = refining ? std::min(scene.simulated_frames(), source->trajectory_frames())
                               : scene.simulated_frames();
   Progress progress(Progress::wanted(options.quiet), frames);
-  std::vector<float> node_strain(scene.output.has_field("strain") ? lattice.node_count() : 0);
-  auto since_write = std::chrono::steady_clock::now();
   RunStatus status;  // complete unless a frame says otherwise
   bool out_of_room = false;
-  bool cut_short = false;        // a frame cut short by a signal: the simulation is not at a frame
-  bool checkpointed = resuming;  // the resumed file's checkpoint is copied
-  auto last_checkpoint = std::chrono::steady_clock::now();
-  for (int frame = first_frame; frame < frames; ++frame) {
-    const auto frame_start = std::chrono::steady_clock::now();
-    if (frame > 0) simulation->advance_frame(&times);
-    if (frame > 0 && InterruptGuard::requested()) {  // the frame was cut short: not written
-      cut_short = true;
+  FileSink file(scene, writer, times, output_stage, refining, resuming, info.series.size());
+  hybrid::FrameSink* const sinks[] = {&file, &progress};
+  const hybrid::FrameRunResult result =
+      hybrid::run_frames(*simulation, scene, first_frame, frames, sinks,
+                         {&times, checks_stage, scene.output.has_field("strain")});
+  // A frame cut short by a signal: the simulation is not at a frame.
+  const bool cut_short = result.end == hybrid::FrameRunEnd::kInterruptedDuring;
+  const double at_s = result.frame / scene.fps;
+  switch (result.end) {
+    case hybrid::FrameRunEnd::kComplete:
+      break;
+    case hybrid::FrameRunEnd::kDiverged:
+      status = {RunState::kDiverged,
+                fmt::format("at t = {:.4g} s (frame {}): {}", at_s, result.frame, result.reason)};
+      break;
+    case hybrid::FrameRunEnd::kInterruptedDuring:
       status = {RunState::kInterrupted,
                 fmt::format("signal received during frame {} (t = {:.4g} s), which is not written",
-                            frame, frame / scene.fps)};
+                            result.frame, at_s)};
       break;
-    }
-    const std::span<const Vec3> positions = simulation->positions();
-    StrainStats strain;
-    {
-      ScopedStageTimer timer(times, checks_stage);
-      strain = link_strain(lattice, positions, node_strain);  // node_strain empty: not asked for
-      if (auto why = hybrid::frame_divergence(*simulation, scene, strain)) {
-        status = {RunState::kDiverged,
-                  fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why)};
-      }
-    }
-    if (status.diverged()) break;
-    if (!scene.output.dense) writer.append_trajectory(simulation->coarse_positions());
-    max_strain_seen = std::max(max_strain_seen, strain.max);
-    if (frame % scene.output.every == 0) {
-      if (auto full = writer.out_of_room()) {  // stop while the file is whole
-        status = {RunState::kInterrupted, fmt::format("stopped before frame {} (t = {:.4g} s): {}",
-                                                      frame, frame / scene.fps, *full)};
-        out_of_room = true;
-        break;
-      }
-      if (has_infill) {
-        const infill::FillReport report = *simulation->infill_report();
-        series = {report.converged ? 1.0 : 0.0, report.residual, double(report.iterations),
-                  report.coarse_offset_m};
-        unconverged_frames += report.converged ? 0 : 1;
-        worst_residual = std::max(worst_residual, report.residual);
-      }
-      data::FrameStats stats{strain.max,
-                             strain.mean,
-                             times.seconds(),
-                             seconds_since(since_write),
-                             simulation->kinetic_energy_j(),
-                             series};
-      // The state this frame ends in, for a run that stops inside a later frame
-      // (a signal, SIGKILL): at the first frame (which fixes where its datasets
-      // lie in the file), then before a flush once a second of wall time has
-      // passed (1.2 MB on the default scene takes 1-4 ms), and at the end.
-      if (scene.output.checkpoint && !refining &&
-          (!checkpointed ||
-           (writer.flushes_next() && seconds_since(last_checkpoint) >= kCheckpointSeconds))) {
-        checkpointed = true;
-        last_checkpoint = std::chrono::steady_clock::now();
-        ScopedStageTimer timer(times, output_stage);
-        const hybrid::SimulationState now = simulation->state();
-        writer.write_checkpoint(
-            checkpoint_of(now, writer.frames_written() + 1, scene.output.dense ? 0 : frame + 1));
-      }
-      // Frame times are n / fps exactly, not the sum of the substeps.
-      writer.write_frame(
-          frame / scene.fps,
-          {positions, simulation->velocities(), node_strain, simulation->coarse_positions()},
-          stats);
-      times.reset();
-      since_write = std::chrono::steady_clock::now();
-    }
-    total_wall_s += seconds_since(frame_start);
-    progress.update(frame, frame / scene.fps, 1000.0 * total_wall_s / (frame - first_frame + 1));
-    if (InterruptGuard::requested() && frame + 1 < frames) {
-      status = {RunState::kInterrupted, fmt::format("signal received after frame {} (t = {:.4g} s)",
-                                                    frame, frame / scene.fps)};
+    case hybrid::FrameRunEnd::kInterruptedAfter:
+      status = {RunState::kInterrupted,
+                fmt::format("signal received after frame {} (t = {:.4g} s)", result.frame, at_s)};
       break;
-    }
+    case hybrid::FrameRunEnd::kStoppedBySink:  // the file sink: the disk is full
+      status = {RunState::kInterrupted, fmt::format("stopped before frame {} (t = {:.4g} s): {}",
+                                                    result.frame, at_s, file.full())};
+      out_of_room = true;
+      break;
   }
+  max_strain_seen = std::max(max_strain_seen, file.max_strain());
+  unconverged_frames += file.unconverged_frames();
+  worst_residual = std::max(worst_residual, file.worst_residual());
   progress.done();
   const bool refined = refining && status.complete();
   if (refined) {  // the run's own ending, and where the frames came from

@@ -15,6 +15,7 @@
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/strain.hpp"
+#include "flagsim/hybrid/frame_runner.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 #include "progress.hpp"
 
@@ -62,6 +63,24 @@ bool frame_is_good(RunRecord& record, const Scene& scene, const std::optional<st
   return false;
 }
 
+// A run's frames into its record, with each frame's stage times.
+class RecordSink final : public hybrid::FrameSink {
+ public:
+  RecordSink(RunRecord& record, StageTimes& times) : record_(record), times_(times) {}
+  bool take(const hybrid::Simulation& simulation, const hybrid::CheckedFrame& frame) override {
+    if (frame.index > 0) add_times(record_, times_);
+    times_.reset();
+    record_.frames.emplace_back(simulation.positions().begin(), simulation.positions().end());
+    const auto coarse = simulation.coarse_positions();
+    if (!coarse.empty()) record_.coarse.emplace_back(coarse.begin(), coarse.end());
+    return true;
+  }
+
+ private:
+  RunRecord& record_;
+  StageTimes& times_;
+};
+
 }  // namespace
 
 RunRecord record_run(const Scene& scene, Progress* progress) {
@@ -75,21 +94,25 @@ RunRecord record_run(const Scene& scene, Progress* progress) {
   std::tie(record.coarse_rows, record.coarse_cols) = simulation->coarse_indices();
   for (const NamedNumber& number : simulation->numbers())
     if (number.name == "substeps_per_frame") record.substeps_per_frame = int(number.value);
-  const int frames = scene.simulated_frames();
-  for (int frame = 0; frame < frames; ++frame) {
-    times.reset();
-    if (frame > 0) simulation->advance_frame(&times);
-    stop_if_requested(scene, frame);
-    const StrainStats strain = link_strain(record.lattice, simulation->positions());
-    if (!frame_is_good(record, scene, hybrid::frame_divergence(*simulation, scene, strain), frame))
-      break;
-    if (frame > 0) add_times(record, times);
-    report_progress(progress, record, frame);
-    record.frames.emplace_back(simulation->positions().begin(), simulation->positions().end());
-    const auto coarse = simulation->coarse_positions();
-    if (!coarse.empty()) record.coarse.emplace_back(coarse.begin(), coarse.end());
-  }
+  RecordSink sink(record, times);
+  std::vector<hybrid::FrameSink*> sinks = {&sink};
+  if (progress) sinks.push_back(progress);
+  const hybrid::FrameRunResult result =
+      hybrid::run_frames(*simulation, scene, 0, scene.simulated_frames(), sinks, {&times});
   if (progress) progress->done();
+  switch (result.end) {
+    case hybrid::FrameRunEnd::kInterruptedDuring:
+    case hybrid::FrameRunEnd::kInterruptedAfter:  // the run is not finished: a record of it
+                                                  // would measure something else
+      throw Interrupted(fmt::format("stopped by a signal in frame {} of {} of scene \"{}\"",
+                                    result.frame, scene.simulated_frames(), scene.name));
+    case hybrid::FrameRunEnd::kDiverged:
+      frame_is_good(record, scene, result.reason, result.frame);
+      break;
+    case hybrid::FrameRunEnd::kComplete:
+    case hybrid::FrameRunEnd::kStoppedBySink:
+      break;
+  }
   average_times(record);
   return record;
 }

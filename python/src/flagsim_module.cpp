@@ -28,6 +28,7 @@
 #include "flagsim/core/scene.hpp"
 #include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
+#include "flagsim/hybrid/frame_runner.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/infill_method.hpp"
@@ -67,15 +68,23 @@ class PySimulation {
 
   void step(int frames) {
     if (frames < 0) throw UserError(fmt_frames(frames));
-    for (int i = 0; i < frames; ++i) {
-      if (diverged_) throw std::runtime_error("the simulation diverged earlier: " + *diverged_);
-      simulation_->advance_frame(nullptr);
-      ++frame_;
-      const StrainStats strain = link_strain(simulation_->lattice(), simulation_->positions());
-      if (auto why = hybrid::frame_divergence(*simulation_, scene_, strain)) {
-        diverged_ = fmt_diverged(*why);
+    if (frames == 0) return;
+    if (diverged_) throw std::runtime_error("the simulation diverged earlier: " + *diverged_);
+    const hybrid::FrameRunResult result =
+        hybrid::run_frames(*simulation_, scene_, frame_ + 1, frame_ + 1 + frames, {});
+    switch (result.end) {
+      case hybrid::FrameRunEnd::kComplete:
+      case hybrid::FrameRunEnd::kInterruptedAfter:  // a whole frame: the state is at it
+      case hybrid::FrameRunEnd::kStoppedBySink:
+        frame_ = result.frame;
+        break;
+      case hybrid::FrameRunEnd::kDiverged:
+        frame_ = result.frame;
+        diverged_ = fmt_diverged(result.reason);
         throw std::runtime_error(*diverged_);
-      }
+      case hybrid::FrameRunEnd::kInterruptedDuring:
+        frame_ = result.frame;
+        break;
     }
   }
   double time() const { return frame_ / scene_.fps; }
