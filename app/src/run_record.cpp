@@ -32,35 +32,11 @@ void add_times(RunRecord& record, const StageTimes& times) {
   }
 }
 
-// A signal (with an InterruptGuard installed) cuts the frame short: the run
-// is not finished, and a record of it would measure something else.
-void stop_if_requested(const Scene& scene, int frame) {
-  if (stop_requested())
-    throw Interrupted(fmt::format("stopped by a signal in frame {} of {} of scene \"{}\"", frame,
-                                  scene.simulated_frames(), scene.name));
-}
-
-// The progress line after frame `frame`, from the times summed so far.
-void report_progress(Progress* progress, const RunRecord& record, int frame) {
-  if (progress)
-    progress->update(frame, frame / record.fps, record.ms_per_frame / std::max(frame, 1));
-}
-
 void average_times(RunRecord& record) {
   const double n = std::max<double>(1.0, double(record.frames.size()) - 1.0);
   record.ms_per_frame /= n;
   record.physics_ms /= n;
   record.infill_ms /= n;
-}
-
-// Records why frame `frame` cannot be trusted, if it cannot (`why`, as the run
-// loop computes it); false then.
-bool frame_is_good(RunRecord& record, const Scene& scene, const std::optional<std::string>& why,
-                   int frame) {
-  if (!why) return true;
-  record.status = {RunState::kDiverged,
-                   fmt::format("at t = {:.4g} s (frame {}): {}", frame / scene.fps, frame, *why)};
-  return false;
 }
 
 // A run's frames into its record, with each frame's stage times.
@@ -81,12 +57,96 @@ class RecordSink final : public hybrid::FrameSink {
   StageTimes& times_;
 };
 
+// The mass-spring cloth with some nodes driven (compare's tracking run), as a
+// Simulation the frame loop can step: the driven nodes go where the hybrid's
+// coarse nodes went, every other node under the scene's forces.
+class TrackingSimulation final : public hybrid::Simulation {
+ public:
+  TrackingSimulation(const Scene& full, const RunRecord& hybrid)
+      : solver_(full), state_(solver_.initial_state()) {
+    const Lattice& lattice = solver_.model().lattice;
+    // Coarse node c sits at dense (rows[c / Kc], cols[c % Kc]).
+    std::vector<std::size_t> nodes;
+    for (int jr : hybrid.coarse_rows)
+      for (int kc : hybrid.coarse_cols) nodes.push_back(lattice.index(jr, kc));
+    const double fps = full.fps;
+    const int last = int(hybrid.coarse.size()) - 1;
+    solver_.drive(nodes, [&hybrid, fps, last](std::size_t which, double t) {
+      const double f = std::clamp(t * fps, 0.0, double(last));
+      const int a = std::min(int(f), std::max(last - 1, 0)), b = std::min(a + 1, last);
+      const double w = f - a;
+      return Vec3((1.0 - w) * hybrid.coarse[std::size_t(a)][which] +
+                  w * hybrid.coarse[std::size_t(b)][which]);
+    });
+    // The start is the hybrid's frame 0 (its coarse nodes, with their slack,
+    // and the infill between them), at rest.
+    state_.x_m = hybrid.frames[0];
+    std::fill(state_.v_m_s.begin(), state_.v_m_s.end(), Vec3::Zero());
+  }
+  const Lattice& lattice() const override { return solver_.model().lattice; }
+  std::vector<std::string> effects() const override { return solver_.effects(); }
+  std::vector<NamedNumber> numbers() const override {
+    return {{"substeps_per_frame", double(solver_.substeps_per_frame()), "1", true}};
+  }
+  void register_stages(StageTimes& times) override { solver_.register_stages(times); }
+  void advance_frame(StageTimes* times) override {
+    solver_.advance_frame(state_, times);
+    ++frame_;
+  }
+  std::span<const Vec3> positions() const override { return state_.x_m; }
+  std::span<const Vec3> velocities() const override { return state_.v_m_s; }
+  double kinetic_energy_j() const override { return solver_.kinetic_energy(state_); }
+  std::string stepping_summary() const override {
+    return fmt::format("{} substeps/frame, driven", solver_.substeps_per_frame());
+  }
+  hybrid::SimulationState state() const override { return {frame_, state_, {}, {}, {}, {}}; }
+  void set_state(const hybrid::SimulationState& state) override {
+    if (state.physics.x_m.size() != state_.x_m.size() ||
+        state.physics.v_m_s.size() != state_.v_m_s.size())
+      throw UserError("set_state: the tracking run's state has another size");
+    state_ = state.physics;
+    frame_ = state.frame;
+  }
+
+ private:
+  physics::SpringDamperSolver solver_;
+  physics::ClothState state_;
+  int frame_ = 0;
+};
+
+// The frames of `simulation` for `scene` into a record, through the frame loop.
+void record_frames(hybrid::Simulation& simulation, const Scene& scene, int frames,
+                   RunRecord& record, Progress* progress) {
+  StageTimes times;
+  simulation.register_stages(times);
+  RecordSink sink(record, times);
+  std::vector<hybrid::FrameSink*> sinks = {&sink};
+  if (progress) sinks.push_back(progress);
+  const hybrid::FrameRunResult result =
+      hybrid::run_frames(simulation, scene, 0, frames, sinks, {&times});
+  if (progress) progress->done();
+  switch (result.end) {
+    case hybrid::FrameRunEnd::kInterruptedDuring:
+    case hybrid::FrameRunEnd::kInterruptedAfter:  // the run is not finished: a record of it
+                                                  // would measure something else
+      throw Interrupted(fmt::format("stopped by a signal in frame {} of {} of scene \"{}\"",
+                                    result.frame, frames, scene.name));
+    case hybrid::FrameRunEnd::kDiverged:
+      record.status = {RunState::kDiverged,
+                       fmt::format("at t = {:.4g} s (frame {}): {}", result.frame / scene.fps,
+                                   result.frame, result.reason)};
+      break;
+    case hybrid::FrameRunEnd::kComplete:
+    case hybrid::FrameRunEnd::kStoppedBySink:
+      break;
+  }
+  average_times(record);
+}
+
 }  // namespace
 
 RunRecord record_run(const Scene& scene, Progress* progress) {
   const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
-  StageTimes times;
-  simulation->register_stages(times);
   RunRecord record;
   record.lattice = simulation->lattice();
   record.fps = scene.fps;
@@ -94,71 +154,18 @@ RunRecord record_run(const Scene& scene, Progress* progress) {
   std::tie(record.coarse_rows, record.coarse_cols) = simulation->coarse_indices();
   for (const NamedNumber& number : simulation->numbers())
     if (number.name == "substeps_per_frame") record.substeps_per_frame = int(number.value);
-  RecordSink sink(record, times);
-  std::vector<hybrid::FrameSink*> sinks = {&sink};
-  if (progress) sinks.push_back(progress);
-  const hybrid::FrameRunResult result =
-      hybrid::run_frames(*simulation, scene, 0, scene.simulated_frames(), sinks, {&times});
-  if (progress) progress->done();
-  switch (result.end) {
-    case hybrid::FrameRunEnd::kInterruptedDuring:
-    case hybrid::FrameRunEnd::kInterruptedAfter:  // the run is not finished: a record of it
-                                                  // would measure something else
-      throw Interrupted(fmt::format("stopped by a signal in frame {} of {} of scene \"{}\"",
-                                    result.frame, scene.simulated_frames(), scene.name));
-    case hybrid::FrameRunEnd::kDiverged:
-      frame_is_good(record, scene, result.reason, result.frame);
-      break;
-    case hybrid::FrameRunEnd::kComplete:
-    case hybrid::FrameRunEnd::kStoppedBySink:
-      break;
-  }
-  average_times(record);
+  record_frames(*simulation, scene, scene.simulated_frames(), record, progress);
   return record;
 }
 
 RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress* progress) {
   const Scene full = in_mode(scene, Mode::kMassSpring);
-  physics::SpringDamperSolver solver(full);
-  physics::ClothState state = solver.initial_state();
+  TrackingSimulation simulation(full, hybrid);
   RunRecord record;
-  record.lattice = solver.model().lattice;
+  record.lattice = simulation.lattice();
   record.fps = full.fps;
-  record.substeps_per_frame = solver.substeps_per_frame();
-  // Coarse node c sits at dense (rows[c / Kc], cols[c % Kc]).
-  std::vector<std::size_t> nodes;
-  for (int jr : hybrid.coarse_rows)
-    for (int kc : hybrid.coarse_cols) nodes.push_back(record.lattice.index(jr, kc));
-  const double fps = full.fps;
-  const int last = int(hybrid.coarse.size()) - 1;
-  solver.drive(nodes, [&](std::size_t which, double t) {
-    const double f = std::clamp(t * fps, 0.0, double(last));
-    const int a = std::min(int(f), std::max(last - 1, 0)), b = std::min(a + 1, last);
-    const double w = f - a;
-    return Vec3((1.0 - w) * hybrid.coarse[std::size_t(a)][which] +
-                w * hybrid.coarse[std::size_t(b)][which]);
-  });
-  // The start is the hybrid's frame 0 (its coarse nodes, with their slack,
-  // and the infill between them), at rest.
-  state.x_m = hybrid.frames[0];
-  std::fill(state.v_m_s.begin(), state.v_m_s.end(), Vec3::Zero());
-  StageTimes times;
-  solver.register_stages(times);
-  const int frames = int(hybrid.frames.size());
-  for (int frame = 0; frame < frames; ++frame) {
-    times.reset();
-    if (frame > 0) solver.advance_frame(state, &times);
-    stop_if_requested(full, frame);
-    const StrainStats strain = link_strain(record.lattice, state.x_m);
-    if (!frame_is_good(record, full, divergence_reason(state.x_m, state.v_m_s, strain, full.limits),
-                       frame))
-      break;
-    if (frame > 0) add_times(record, times);
-    report_progress(progress, record, frame);
-    record.frames.push_back(state.x_m);
-  }
-  if (progress) progress->done();
-  average_times(record);
+  record.substeps_per_frame = int(simulation.numbers().front().value);
+  record_frames(simulation, full, int(hybrid.frames.size()), record, progress);
   return record;
 }
 
