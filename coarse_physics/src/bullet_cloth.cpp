@@ -129,7 +129,7 @@ BulletCloth::BulletCloth(const Scene& scene)
     });
   btSoftBody::Config& cfg = body.m_cfg;
   cfg.piterations = iterations;
-  cfg.kDP = 1.0 - 1.0 / (1.0 + model_.damping_per_s * dt);
+  cfg.kDP = 1.0 - model_.velocity_damping(dt);
   cfg.kDG = 0;
   cfg.kLF = 0;
   cfg.collisions = 0;

@@ -7,12 +7,7 @@
 namespace flagsim::physics {
 
 double ClothIntegrator::kinetic_energy() const {
-  const ClothState& s = state();
-  const std::vector<double>& mass = model().mass_kg;
-  double total = 0.0;
-  for (std::size_t i = 0; i < s.v_m_s.size(); ++i)
-    total += 0.5 * mass[i] * s.v_m_s[i].squaredNorm();
-  return total;
+  return kinetic_energy_j(model().mass_kg, state().v_m_s);
 }
 
 std::optional<WindField::Drift> ClothIntegrator::wind_drift() const {

@@ -31,6 +31,12 @@ std::vector<std::uint8_t> pinned_nodes(const Lattice& lattice, PinSet pin) {
   return pinned;
 }
 
+double kinetic_energy_j(std::span<const double> mass_kg, std::span<const Vec3> v_m_s) {
+  double total = 0.0;
+  for (std::size_t i = 0; i < v_m_s.size(); ++i) total += 0.5 * mass_kg[i] * v_m_s[i].squaredNorm();
+  return total;
+}
+
 ClothModel make_cloth_model(const Scene& scene) {
   ClothModel model;
   model.lattice = scene.fine_lattice();

@@ -106,7 +106,7 @@ double ImplicitEuler::largest_strain_change() const {
 }
 
 void ImplicitEuler::apply(double dt_s, const std::vector<Vec3>& dv, std::vector<Vec3>& out) {
-  const double mass_scale = 1.0 + model_.damping_per_s * dt_s;
+  const double mass_scale = model_.damping_mass_scale(dt_s);
   const std::size_t n = dv.size();
   for (std::size_t i = 0; i < n; ++i) out[i] = (mass_scale * model_.mass_kg[i]) * dv[i];
   // h C dv + h^2 K dv, accumulated as h (C dv + h K dv).
@@ -254,7 +254,7 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
   const double next_time = state_.time_s + h;
   const Vec3 pin_offset = pins_.offset_m(next_time);
   const std::size_t n = state_.x_m.size();
-  const double mass_scale = 1.0 + model_.damping_per_s * h;
+  const double mass_scale = model_.damping_mass_scale(h);
   x0_ = state_.x_m;
   v0_ = state_.v_m_s;
   std::vector<Vec3>& v = state_.v_m_s;

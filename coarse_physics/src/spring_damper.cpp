@@ -71,7 +71,7 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
     const double next_time = state.time_s + dt_s;
     const Vec3 pin_offset = pins_.offset_m(next_time);
     const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
-    const double damping = 1.0 / (1.0 + model_.damping_per_s * dt_s);
+    const double damping = model_.velocity_damping(dt_s);
     const std::size_t n = state.x_m.size();
     for (std::size_t i = 0; i < n; ++i) {
       if (model_.pinned[i]) {
@@ -100,10 +100,7 @@ void SpringDamperSolver::drive(std::vector<std::size_t> nodes, Driver where) {
 }
 
 double SpringDamperSolver::kinetic_energy(const ClothState& state) const {
-  double total = 0.0;
-  for (std::size_t i = 0; i < state.v_m_s.size(); ++i)
-    total += 0.5 * model_.mass_kg[i] * state.v_m_s[i].squaredNorm();
-  return total;
+  return kinetic_energy_j(model_.mass_kg, state.v_m_s);
 }
 
 double SpringDamperSolver::potential_energy(const ClothState& state) const {

@@ -110,7 +110,7 @@ void Xpbd::step(double dt_s, StageTimes* times) {
   }
   const Vec3 pin_offset = pins_.offset_m(next_time);
   run_timed(times, update_stage_, [&] {
-    const double damping = 1.0 / (1.0 + model_.damping_per_s * h);
+    const double damping = model_.velocity_damping(h);
     predicted_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       if (model_.pinned[i]) {

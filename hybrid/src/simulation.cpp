@@ -225,12 +225,7 @@ class DenseInfill {
   std::span<const Vec3> positions() const { return positions_; }
   std::span<const Vec3> velocities() const { return velocities_; }
   /// 1/2 sum m |v|^2 over the dense nodes, J.
-  double kinetic_energy_j() const {
-    double total = 0.0;
-    for (std::size_t i = 0; i < velocities_.size(); ++i)
-      total += 0.5 * mass_kg_[i] * velocities_[i].squaredNorm();
-    return total;
-  }
+  double kinetic_energy_j() const { return physics::kinetic_energy_j(mass_kg_, velocities_); }
 
  private:
   Lattice lattice_;

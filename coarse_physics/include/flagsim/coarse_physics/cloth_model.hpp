@@ -17,6 +17,7 @@
 //    of a row or column, see bending_springs.hpp.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "flagsim/core/lattice.hpp"
@@ -38,8 +39,17 @@ struct ClothModel {
   std::vector<double> mass_kg;       ///< [J*K]
   std::vector<std::uint8_t> pinned;  ///< [J*K], 1 = position prescribed
   std::array<LinkFamily, 4> links;   ///< row, column, two diagonals
-  double damping_per_s = 0.0;
+  double damping_per_s = 0.0;        ///< flag.damping c, 1/s
+
+  /// Damping over a substep dt, implicit in time: v <- v / (1 + c dt). Every
+  /// backend applies it: the explicit ones and XPBD as this factor, Bullet as
+  /// its kDP = 1 - factor, implicit Euler as the mass scale 1 + c dt.
+  double damping_mass_scale(double dt_s) const { return 1.0 + damping_per_s * dt_s; }
+  double velocity_damping(double dt_s) const { return 1.0 / damping_mass_scale(dt_s); }
 };
+
+/// 1/2 sum m |v|^2, J: of a lattice's nodes, masses [n] kg and velocities [n] m/s.
+double kinetic_energy_j(std::span<const double> mass_kg, std::span<const Vec3> v_m_s);
 
 /// Builds the cloth of `scene` on its fine lattice.
 ClothModel make_cloth_model(const Scene& scene);
