@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "flagsim/core/strain.hpp"
-#include "flagsim/infill/infill_solver.hpp"
+#include "flagsim/infill/paper/infill_solver.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "flagsim/infill/relax.hpp"
+#include "flagsim/infill/paper/relax.hpp"
 #include "tolerances.hpp"
 
 namespace flagsim::infill {

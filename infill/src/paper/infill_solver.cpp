@@ -1,4 +1,4 @@
-#include "flagsim/infill/infill_solver.hpp"
+#include "flagsim/infill/paper/infill_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,10 @@
 
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/strain.hpp"
-#include "flagsim/infill/boundary.hpp"
-#include "flagsim/infill/initial_move.hpp"
-#include "flagsim/infill/length_search.hpp"
-#include "flagsim/infill/relax.hpp"
-#include "flagsim/infill/smooth_infill.hpp"
+#include "flagsim/infill/paper/boundary.hpp"
+#include "flagsim/infill/paper/initial_move.hpp"
+#include "flagsim/infill/paper/length_search.hpp"
+#include "flagsim/infill/paper/relax.hpp"
 
 namespace flagsim::infill {
 
@@ -180,14 +179,6 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
     timed(stages_.wrinkles, [&] { rewrinkle(positions_m); });
     timed(stages_.relax, relax);
   }
-}
-
-std::unique_ptr<InfillMethod> make_infill(const Lattice& fine, const CellGrid& grid,
-                                          const InfillOptions& options) {
-  if (options.solver == InfillSolverKind::kPaper)
-    return std::make_unique<InfillSolver>(fine, grid, options.relax_sweeps, options.wrinkles,
-                                          options.wrinkle_rounds);
-  return std::make_unique<SmoothInfill>(fine, grid, options.wrinkles);
 }
 
 }  // namespace flagsim::infill

@@ -1,10 +1,10 @@
-#include "flagsim/infill/boundary.hpp"
+#include "flagsim/infill/paper/boundary.hpp"
 
 #include <cmath>
 #include <numbers>
 
-#include "flagsim/infill/initial_move.hpp"
-#include "flagsim/infill/length_search.hpp"
+#include "flagsim/infill/paper/initial_move.hpp"
+#include "flagsim/infill/paper/length_search.hpp"
 
 namespace flagsim::infill {
 

@@ -1,5 +1,5 @@
 // Step 3.1's edges: arcs on which every link keeps its rest length.
-#include "flagsim/infill/boundary.hpp"
+#include "flagsim/infill/paper/boundary.hpp"
 
 #include <gtest/gtest.h>
 

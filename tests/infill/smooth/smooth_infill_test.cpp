@@ -1,4 +1,4 @@
-#include "flagsim/infill/smooth_infill.hpp"
+#include "flagsim/infill/smooth/smooth_infill.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "flagsim/infill/infill_solver.hpp"
+#include "flagsim/infill/paper/infill_solver.hpp"
 
 #include <gtest/gtest.h>
 

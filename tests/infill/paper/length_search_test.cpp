@@ -1,4 +1,4 @@
-#include "flagsim/infill/length_search.hpp"
+#include "flagsim/infill/paper/length_search.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "fiber_fixtures.hpp"
-#include "flagsim/infill/initial_move.hpp"
+#include "flagsim/infill/paper/initial_move.hpp"
 #include "tolerances.hpp"
 
 namespace flagsim::infill {

@@ -1,4 +1,4 @@
-#include "flagsim/infill/spline_surface.hpp"
+#include "flagsim/infill/smooth/spline_surface.hpp"
 
 #include <Eigen/SparseCore>
 #include <Eigen/SparseQR>

@@ -1,4 +1,4 @@
-#include "flagsim/infill/initial_move.hpp"
+#include "flagsim/infill/paper/initial_move.hpp"
 
 #include <Eigen/SVD>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "flagsim/infill/relax.hpp"
+#include "flagsim/infill/paper/relax.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -58,9 +58,9 @@
 #include <span>
 #include <vector>
 
-#include "flagsim/infill/fiber_projection.hpp"
 #include "flagsim/infill/infill_method.hpp"
-#include "flagsim/infill/spline_surface.hpp"
+#include "flagsim/infill/smooth/fiber_projection.hpp"
+#include "flagsim/infill/smooth/spline_surface.hpp"
 #include "flagsim/infill/wrinkles.hpp"
 
 namespace flagsim::infill {

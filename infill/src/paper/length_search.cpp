@@ -1,10 +1,10 @@
-#include "flagsim/infill/length_search.hpp"
+#include "flagsim/infill/paper/length_search.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "flagsim/infill/initial_move.hpp"
+#include "flagsim/infill/paper/initial_move.hpp"
 
 namespace flagsim::infill {
 

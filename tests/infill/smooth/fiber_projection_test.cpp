@@ -1,4 +1,4 @@
-#include "flagsim/infill/fiber_projection.hpp"
+#include "flagsim/infill/smooth/fiber_projection.hpp"
 
 #include <gtest/gtest.h>
 
