@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/strain_limit.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 
 #include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/coarse_physics/xpbd.hpp"
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace {
 

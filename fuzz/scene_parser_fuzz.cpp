@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace {
 

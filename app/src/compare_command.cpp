@@ -12,7 +12,7 @@
 
 #include "flagsim/analysis/metrics.hpp"
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/file_roles.hpp"
+#include "flagsim/os/file_roles.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "report.hpp"

@@ -10,11 +10,11 @@
 
 #include "dense_input.hpp"
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/file_roles.hpp"
-#include "flagsim/core/staged_file.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/data/mesh_export.hpp"
 #include "flagsim/data/output_reader.hpp"
+#include "flagsim/os/file_roles.hpp"
+#include "flagsim/os/staged_file.hpp"
 #include "frame_range.hpp"
 #include "interrupt.hpp"
 

@@ -7,9 +7,9 @@
 #include <filesystem>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/message.hpp"
 #include "flagsim/data/output_reader.hpp"
+#include "flagsim/os/file_roles.hpp"
 #include "interrupt.hpp"
 #include "python_plot.hpp"
 

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/stop_request.hpp"
+#include "flagsim/os/child_process.hpp"
 
 namespace flagsim::app {
 

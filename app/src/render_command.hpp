@@ -6,12 +6,12 @@
 #include <string>
 
 #include "flagsim/core/enum_names.hpp"
-#include "flagsim/core/file_roles.hpp"
-#include "flagsim/core/scene.hpp"
+#include "flagsim/os/file_roles.hpp"
 #include "flagsim/render/camera.hpp"
 #include "flagsim/render/frame_renderer.hpp"
 #include "flagsim/render/image.hpp"
 #include "flagsim/render/video_writer.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::data {
 class OutputReader;

@@ -13,7 +13,7 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
-#include "flagsim/core/staged_file.hpp"
+#include "flagsim/os/staged_file.hpp"
 
 namespace flagsim::app {
 namespace {

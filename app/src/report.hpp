@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/run_status.hpp"
-#include "flagsim/core/scene.hpp"
+#include "flagsim/os/file_roles.hpp"
+#include "flagsim/scene/scene.hpp"
 #include "run_record.hpp"
 
 namespace flagsim::app {

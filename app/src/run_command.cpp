@@ -12,17 +12,17 @@
 #include <filesystem>
 #include <tuple>
 
-#include "flagsim/core/divergence.hpp"
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/message.hpp"
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "flagsim/data/output_reader.hpp"
+#include "flagsim/hybrid/divergence.hpp"
 #include "flagsim/hybrid/frame_runner.hpp"
 #include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/os/file_roles.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "render_command.hpp"

@@ -10,11 +10,11 @@
 #include <string_view>
 
 #include "flagsim/coarse_physics/spring_damper.hpp"
-#include "flagsim/core/divergence.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/strain.hpp"
+#include "flagsim/hybrid/divergence.hpp"
 #include "flagsim/hybrid/frame_runner.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 #include "progress.hpp"

@@ -8,7 +8,7 @@
 #include "flagsim/analysis/metrics.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/run_status.hpp"
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::app {
 

@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/scene_keys.hpp"
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/scene/scene_keys.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim::app {
 

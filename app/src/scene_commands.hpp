@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "flagsim/core/scene.hpp"
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim::app {
 

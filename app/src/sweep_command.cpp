@@ -23,11 +23,11 @@
 #include <map>
 #include <regex>
 
-#include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/message.hpp"
-#include "flagsim/core/staged_file.hpp"
+#include "flagsim/os/child_process.hpp"
+#include "flagsim/os/file_roles.hpp"
+#include "flagsim/os/staged_file.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "python_plot.hpp"

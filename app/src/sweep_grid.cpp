@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::app {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 namespace {

@@ -15,8 +15,8 @@
 #include <stdexcept>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/file_roles.hpp"
 #include "flagsim/data/disk_room.hpp"
+#include "flagsim/os/file_roles.hpp"
 #include "h5_handle.hpp"
 
 namespace flagsim::data {

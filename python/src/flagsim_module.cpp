@@ -25,13 +25,13 @@
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/lattice.hpp"
-#include "flagsim/core/scene.hpp"
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/hybrid/frame_runner.hpp"
 #include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/infill_method.hpp"
+#include "flagsim/scene/scene.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 #include "run_command.hpp"
 
 namespace py = pybind11;

@@ -8,7 +8,7 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/limits.hpp"
-#include "flagsim/core/staged_file.hpp"
+#include "flagsim/os/staged_file.hpp"
 
 namespace flagsim::render {
 namespace {

@@ -11,8 +11,8 @@
 #include <sstream>
 #include <vector>
 
-#include "flagsim/core/child_process.hpp"
 #include "flagsim/core/errors.hpp"
+#include "flagsim/os/child_process.hpp"
 
 namespace flagsim::render {
 

@@ -9,8 +9,8 @@
 #include <cstdio>
 
 #include "flagsim/coarse_physics/spring_damper.hpp"
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 #include "scene_fixtures.hpp"
 #include "tolerances.hpp"
 

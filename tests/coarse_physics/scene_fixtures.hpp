@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::test {
 

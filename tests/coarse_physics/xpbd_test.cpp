@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <set>
 
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 #include "scene_fixtures.hpp"
 #include "tolerances.hpp"
 

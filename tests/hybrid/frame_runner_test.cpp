@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/strain.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim::hybrid {
 namespace {

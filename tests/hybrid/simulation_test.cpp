@@ -8,8 +8,8 @@
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/core/strain.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 #include "tolerances.hpp"
 
 namespace flagsim::hybrid {

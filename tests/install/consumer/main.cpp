@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "flagsim/core/scene_parser.hpp"
 #include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::atoi(argv[1]) : 5;

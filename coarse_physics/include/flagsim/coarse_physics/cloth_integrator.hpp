@@ -13,8 +13,8 @@
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/spring_damper.hpp"
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

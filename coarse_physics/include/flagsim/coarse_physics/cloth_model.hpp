@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "flagsim/core/lattice.hpp"
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

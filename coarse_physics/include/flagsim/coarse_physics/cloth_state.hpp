@@ -6,9 +6,9 @@
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/vec3.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

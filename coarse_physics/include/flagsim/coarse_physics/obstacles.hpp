@@ -24,8 +24,8 @@
 
 #include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/core/lattice.hpp"
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/vec3.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

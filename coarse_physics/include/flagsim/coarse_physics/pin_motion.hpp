@@ -4,7 +4,7 @@
 //   t).
 #include <optional>
 
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

@@ -24,8 +24,8 @@
 #include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/coarse_physics/stability.hpp"
 #include "flagsim/coarse_physics/vortex_wake.hpp"
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

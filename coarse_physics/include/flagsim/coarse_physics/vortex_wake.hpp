@@ -67,7 +67,7 @@
 #include "flagsim/coarse_physics/air_panels.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/wind_field.hpp"
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

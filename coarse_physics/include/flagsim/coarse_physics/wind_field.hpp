@@ -23,7 +23,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
 

@@ -7,10 +7,10 @@
 #include <span>
 #include <string>
 
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::hybrid {
 

@@ -13,10 +13,10 @@
 #include "flagsim/coarse_physics/wind_field.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/named_number.hpp"
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/infill/infill_method.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::hybrid {
 

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "flagsim/core/lattice.hpp"
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/wrinkles.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::infill {
 

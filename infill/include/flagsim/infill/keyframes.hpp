@@ -5,7 +5,7 @@
 #include <array>
 #include <span>
 
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::infill {
 

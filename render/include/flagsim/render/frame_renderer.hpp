@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/vec3.hpp"
 #include "flagsim/render/camera.hpp"
 #include "flagsim/render/image.hpp"
 #include "flagsim/render/offscreen_context.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim::render {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "flagsim/core/child_process.hpp"
+#include "flagsim/os/child_process.hpp"
 #include "flagsim/render/image.hpp"
 
 namespace flagsim::render {

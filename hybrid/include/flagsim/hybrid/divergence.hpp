@@ -5,8 +5,8 @@
 #include <span>
 #include <string>
 
-#include "flagsim/core/scene.hpp"
 #include "flagsim/core/strain.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim {
 

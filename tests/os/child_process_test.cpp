@@ -1,4 +1,4 @@
-#include "flagsim/core/child_process.hpp"
+#include "flagsim/os/child_process.hpp"
 
 #include <gtest/gtest.h>
 

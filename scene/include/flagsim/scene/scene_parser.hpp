@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim {
 

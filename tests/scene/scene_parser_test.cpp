@@ -1,4 +1,4 @@
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 #include <gtest/gtest.h>
 

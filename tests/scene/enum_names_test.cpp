@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 namespace flagsim {
 namespace {

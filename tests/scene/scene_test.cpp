@@ -1,8 +1,8 @@
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 #include <gtest/gtest.h>
 
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,6 +1,6 @@
 // scene_keys.cpp: the scene as its run takes it (flag-sim scene FILE) and the
 // key reference (flag-sim help keys), both from the parser's own reads.
-#include "flagsim/core/scene_keys.hpp"
+#include "flagsim/scene/scene_keys.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/near_miss.hpp"
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim::detail {
 namespace {

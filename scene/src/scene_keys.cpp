@@ -1,4 +1,4 @@
-#include "flagsim/core/scene_keys.hpp"
+#include "flagsim/scene/scene_keys.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/file_roles.hpp"
 #include "flagsim/core/limits.hpp"
+#include "flagsim/core/message.hpp"
 #include "scene_checks.hpp"
 #include "toml_reader.hpp"
 

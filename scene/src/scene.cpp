@@ -1,4 +1,4 @@
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 
 #include <fmt/format.h>
 

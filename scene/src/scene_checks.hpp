@@ -1,6 +1,6 @@
 #pragma once
 // Whole-scene checks run after every key has been read on its own.
-#include "flagsim/core/scene.hpp"
+#include "flagsim/scene/scene.hpp"
 #include "toml_reader.hpp"
 
 namespace flagsim::detail {

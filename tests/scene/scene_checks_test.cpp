@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/core/scene_parser.hpp"
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim::detail {
 namespace {

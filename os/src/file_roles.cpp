@@ -1,4 +1,4 @@
-#include "flagsim/core/file_roles.hpp"
+#include "flagsim/os/file_roles.hpp"
 
 #include <fmt/format.h>
 #include <sys/stat.h>

@@ -1,6 +1,6 @@
 // file_roles.cpp: an output is never an input (or another output), however
 // the path is spelt; a failed command leaves no directory it made behind.
-#include "flagsim/core/file_roles.hpp"
+#include "flagsim/os/file_roles.hpp"
 
 #include <gtest/gtest.h>
 

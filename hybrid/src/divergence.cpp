@@ -1,4 +1,4 @@
-#include "flagsim/core/divergence.hpp"
+#include "flagsim/hybrid/divergence.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "flagsim/core/staged_file.hpp"
+#include "flagsim/os/staged_file.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
