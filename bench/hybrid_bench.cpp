@@ -15,10 +15,10 @@
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/core/strain.hpp"
-#include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/strain_limit.hpp"
 #include "flagsim/scene/scene_parser.hpp"
+#include "flagsim/sim/simulation.hpp"
 
 namespace {
 
@@ -32,7 +32,7 @@ const std::vector<std::vector<Vec3>>& coarse_trajectory() {
     const std::vector<std::string> sets = {"scene.mode=\"mass-spring\"", "flag.fine=[9,13]"};
     const flagsim::Scene scene =
         flagsim::parse_scene(flagsim::default_scene_toml(), flagsim::kDefaultSceneName, sets);
-    auto simulation = flagsim::hybrid::make_simulation(scene);
+    auto simulation = flagsim::sim::make_simulation(scene);
     std::vector<std::vector<Vec3>> recorded;
     for (int frame = 0; frame < scene.simulated_frames(); ++frame) {
       if (frame > 0) simulation->advance_frame(nullptr);

@@ -33,7 +33,7 @@ void Progress::update(int frame, double time_s, double ms_per_frame) {
   std::fflush(stderr);
 }
 
-bool Progress::take(const hybrid::Simulation& /*simulation*/, const hybrid::CheckedFrame& frame) {
+bool Progress::take(const sim::Simulation& /*simulation*/, const sim::CheckedFrame& frame) {
   const auto now = std::chrono::steady_clock::now();
   if (first_taken_ < 0) {
     first_taken_ = frame.index;

@@ -8,12 +8,12 @@
 #include <string>
 #include <utility>
 
-#include "flagsim/hybrid/frame_runner.hpp"
+#include "flagsim/sim/frame_runner.hpp"
 
 namespace flagsim::app {
 
-/// Also a sink of a run of frames (hybrid::run_frames): each good frame updates the line.
-class Progress final : public hybrid::FrameSink {
+/// Also a sink of a run of frames (sim::run_frames): each good frame updates the line.
+class Progress final : public sim::FrameSink {
  public:
   /// Shown only when `enabled` (stderr is a terminal and --quiet is not given).
   /// `label` leads the line ("reference (mass-spring)"); empty: none.
@@ -26,7 +26,7 @@ class Progress final : public hybrid::FrameSink {
   void update(int frame, double time_s, double ms_per_frame);
   /// update() after each frame of a run, with the mean wall time of its frames
   /// so far, each counted from its start until the next frame starts.
-  bool take(const hybrid::Simulation& simulation, const hybrid::CheckedFrame& frame) override;
+  bool take(const sim::Simulation& simulation, const sim::CheckedFrame& frame) override;
   /// Clears the line.
   void done();
 

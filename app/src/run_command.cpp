@@ -18,11 +18,11 @@
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "flagsim/data/output_reader.hpp"
-#include "flagsim/hybrid/divergence.hpp"
-#include "flagsim/hybrid/frame_runner.hpp"
-#include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/os/file_roles.hpp"
 #include "flagsim/scene/scene_parser.hpp"
+#include "flagsim/sim/divergence.hpp"
+#include "flagsim/sim/frame_runner.hpp"
+#include "flagsim/sim/simulation.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
 #include "render_command.hpp"
@@ -97,7 +97,7 @@ std::span<const double> flat(std::span<const Vec3> vectors) {
 
 // A file without dense frames (output.dense = false) keeps no dense state
 // either: resume fills it again from the coarse trajectory, as refine does.
-data::Checkpoint checkpoint_of(const hybrid::SimulationState& state, int written_frames,
+data::Checkpoint checkpoint_of(const sim::SimulationState& state, int written_frames,
                                int trajectory_frames) {
   data::Checkpoint checkpoint;
   checkpoint.frame = state.frame;
@@ -119,7 +119,7 @@ data::Checkpoint checkpoint_of(const hybrid::SimulationState& state, int written
   return checkpoint;
 }
 
-hybrid::SimulationState state_of(const data::Checkpoint& checkpoint, const std::string& file) {
+sim::SimulationState state_of(const data::Checkpoint& checkpoint, const std::string& file) {
   const auto values = [&](const char* name, std::size_t multiple) {
     const data::Checkpoint::Part* part = checkpoint.part(name);
     const std::span<const double> found = part ? part->values() : std::span<const double>();
@@ -144,7 +144,7 @@ hybrid::SimulationState state_of(const data::Checkpoint& checkpoint, const std::
       throw UserError(fmt::format("{}: /checkpoint/{} is damaged (its length)", file, name));
     return one[0];
   };
-  hybrid::SimulationState state;
+  sim::SimulationState state;
   state.frame = checkpoint.frame;
   state.physics.x_m = vectors("physics_positions");
   state.physics.v_m_s = vectors("physics_velocities");
@@ -167,20 +167,20 @@ hybrid::SimulationState state_of(const data::Checkpoint& checkpoint, const std::
 // The state run --resume continues from. A coarse-only file's dense lattice
 // is the infill's over the stored trajectory, replayed to the checkpoint's
 // frame (bit for bit what the run held, as refine's frames are).
-hybrid::SimulationState resume_state(const Scene& scene, const data::Checkpoint& checkpoint,
-                                     const data::OutputReader& source, const std::string& file) {
-  hybrid::SimulationState state = state_of(checkpoint, file);
+sim::SimulationState resume_state(const Scene& scene, const data::Checkpoint& checkpoint,
+                                  const data::OutputReader& source, const std::string& file) {
+  sim::SimulationState state = state_of(checkpoint, file);
   if (checkpoint.trajectory_frames == 0) return state;
   if (checkpoint.trajectory_frames != checkpoint.frame + 1 ||
       source.trajectory_frames() < checkpoint.trajectory_frames)
     throw UserError(
         fmt::format("{}: /checkpoint names {} coarse trajectory frames, the file holds {}", file,
                     checkpoint.trajectory_frames, source.trajectory_frames()));
-  const std::unique_ptr<hybrid::Simulation> replay = hybrid::make_replay(
+  const std::unique_ptr<sim::Simulation> replay = sim::make_replay(
       scene,
       [&source](int frame, std::vector<Vec3>& out) { out = source.coarse_trajectory(frame); });
   for (int frame = 1; frame <= checkpoint.frame; ++frame) replay->advance_frame(nullptr);
-  hybrid::SimulationState dense = replay->state();
+  sim::SimulationState dense = replay->state();
   state.dense_m = std::move(dense.dense_m);
   state.dense_v_m_s = std::move(dense.dense_v_m_s);
   state.infill_memory = std::move(dense.infill_memory);
@@ -219,7 +219,7 @@ RunStatus status_of(const data::OutputReader& source) {
 
 // The run's file as a sink of its frames: the coarse trajectory of every
 // frame, every output.every-th frame with its statistics, and the checkpoints.
-class FileSink final : public hybrid::FrameSink {
+class FileSink final : public sim::FrameSink {
  public:
   FileSink(const Scene& scene, data::FrameWriter& writer, StageTimes& times, int output_stage,
            bool refining, bool resuming, std::size_t series)
@@ -231,7 +231,7 @@ class FileSink final : public hybrid::FrameSink {
         checkpointed_(resuming),
         series_(series) {}
 
-  bool take(const hybrid::Simulation& simulation, const hybrid::CheckedFrame& frame) override {
+  bool take(const sim::Simulation& simulation, const sim::CheckedFrame& frame) override {
     if (!scene_.output.dense) writer_.append_trajectory(simulation.coarse_positions());
     max_strain_ = std::max(max_strain_, frame.strain.max);
     if (frame.index % scene_.output.every != 0) return true;
@@ -261,7 +261,7 @@ class FileSink final : public hybrid::FrameSink {
       checkpointed_ = true;
       last_checkpoint_ = std::chrono::steady_clock::now();
       ScopedStageTimer timer(times_, output_stage_);
-      const hybrid::SimulationState now = simulation.state();
+      const sim::SimulationState now = simulation.state();
       writer_.write_checkpoint(checkpoint_of(now, writer_.frames_written() + 1,
                                              scene_.output.dense ? 0 : frame.index + 1));
     }
@@ -408,12 +408,12 @@ int run_command(const RunOptions& options) {
   // From here a signal is exit 130: during the set-up (seconds on a large
   // lattice) nothing is written yet, later the frames so far are kept.
   InterruptGuard interrupt;
-  const std::unique_ptr<hybrid::Simulation> simulation =
-      refining ? hybrid::make_replay(scene,
-                                     [&source](int frame, std::vector<Vec3>& out) {
-                                       out = source->coarse_trajectory(frame);
-                                     })
-               : hybrid::make_simulation(scene);
+  const std::unique_ptr<sim::Simulation> simulation =
+      refining ? sim::make_replay(scene,
+                                  [&source](int frame, std::vector<Vec3>& out) {
+                                    out = source->coarse_trajectory(frame);
+                                  })
+               : sim::make_simulation(scene);
   if (resuming) {
     try {
       simulation->set_state(resume_state(scene, *resume_point, *source, options.resume_input));
@@ -484,30 +484,30 @@ int run_command(const RunOptions& options) {
   RunStatus status;  // complete unless a frame says otherwise
   bool out_of_room = false;
   FileSink file(scene, writer, times, output_stage, refining, resuming, info.series.size());
-  hybrid::FrameSink* const sinks[] = {&file, &progress};
-  const hybrid::FrameRunResult result =
-      hybrid::run_frames(*simulation, scene, first_frame, frames, sinks,
-                         {&times, checks_stage, scene.output.has_field("strain")});
+  sim::FrameSink* const sinks[] = {&file, &progress};
+  const sim::FrameRunResult result =
+      sim::run_frames(*simulation, scene, first_frame, frames, sinks,
+                      {&times, checks_stage, scene.output.has_field("strain")});
   // A frame cut short by a signal: the simulation is not at a frame.
-  const bool cut_short = result.end == hybrid::FrameRunEnd::kInterruptedDuring;
+  const bool cut_short = result.end == sim::FrameRunEnd::kInterruptedDuring;
   const double at_s = result.frame / scene.fps;
   switch (result.end) {
-    case hybrid::FrameRunEnd::kComplete:
+    case sim::FrameRunEnd::kComplete:
       break;
-    case hybrid::FrameRunEnd::kDiverged:
+    case sim::FrameRunEnd::kDiverged:
       status = {RunState::kDiverged,
                 fmt::format("at t = {:.4g} s (frame {}): {}", at_s, result.frame, result.reason)};
       break;
-    case hybrid::FrameRunEnd::kInterruptedDuring:
+    case sim::FrameRunEnd::kInterruptedDuring:
       status = {RunState::kInterrupted,
                 fmt::format("signal received during frame {} (t = {:.4g} s), which is not written",
                             result.frame, at_s)};
       break;
-    case hybrid::FrameRunEnd::kInterruptedAfter:
+    case sim::FrameRunEnd::kInterruptedAfter:
       status = {RunState::kInterrupted,
                 fmt::format("signal received after frame {} (t = {:.4g} s)", result.frame, at_s)};
       break;
-    case hybrid::FrameRunEnd::kStoppedBySink:  // the file sink: the disk is full
+    case sim::FrameRunEnd::kStoppedBySink:  // the file sink: the disk is full
       status = {RunState::kInterrupted, fmt::format("stopped before frame {} (t = {:.4g} s): {}",
                                                     result.frame, at_s, file.full())};
       out_of_room = true;
@@ -531,7 +531,7 @@ int run_command(const RunOptions& options) {
   }
   // The state the run ends in, when it ended at a whole frame.
   if (scene.output.checkpoint && !refining && !cut_short && !out_of_room && !status.diverged()) {
-    const hybrid::SimulationState end = simulation->state();
+    const sim::SimulationState end = simulation->state();
     if (end.frame >= first_frame)  // else the checkpoint copied from the resumed file stands
       writer.write_checkpoint(
           checkpoint_of(end, writer.frames_written(), scene.output.dense ? 0 : end.frame + 1));
@@ -575,7 +575,7 @@ int run_command(const RunOptions& options) {
         "note: output.dense = false: {} keeps the coarse trajectory, not the dense frames; "
         "`flag-sim refine {} -o DENSE.h5` recomputes them\n",
         writer.path(), writer.path());
-  if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
+  if (auto note = sim::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   if (unconverged_frames > 0 && worst_residual > 0.0)
     fmt::print(
         "note: the infill did not reach its tolerance in {} of {} frames (worst link {:.3f}% "

@@ -14,9 +14,9 @@
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/stop_request.hpp"
 #include "flagsim/core/strain.hpp"
-#include "flagsim/hybrid/divergence.hpp"
-#include "flagsim/hybrid/frame_runner.hpp"
-#include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/sim/divergence.hpp"
+#include "flagsim/sim/frame_runner.hpp"
+#include "flagsim/sim/simulation.hpp"
 #include "progress.hpp"
 
 namespace flagsim::app {
@@ -40,10 +40,10 @@ void average_times(RunRecord& record) {
 }
 
 // A run's frames into its record, with each frame's stage times.
-class RecordSink final : public hybrid::FrameSink {
+class RecordSink final : public sim::FrameSink {
  public:
   RecordSink(RunRecord& record, StageTimes& times) : record_(record), times_(times) {}
-  bool take(const hybrid::Simulation& simulation, const hybrid::CheckedFrame& frame) override {
+  bool take(const sim::Simulation& simulation, const sim::CheckedFrame& frame) override {
     if (frame.index > 0) add_times(record_, times_);
     times_.reset();
     record_.frames.emplace_back(simulation.positions().begin(), simulation.positions().end());
@@ -60,7 +60,7 @@ class RecordSink final : public hybrid::FrameSink {
 // The mass-spring cloth with some nodes driven (compare's tracking run), as a
 // Simulation the frame loop can step: the driven nodes go where the hybrid's
 // coarse nodes went, every other node under the scene's forces.
-class TrackingSimulation final : public hybrid::Simulation {
+class TrackingSimulation final : public sim::Simulation {
  public:
   TrackingSimulation(const Scene& full, const RunRecord& hybrid)
       : solver_(full), state_(solver_.initial_state()) {
@@ -99,8 +99,8 @@ class TrackingSimulation final : public hybrid::Simulation {
   std::string stepping_summary() const override {
     return fmt::format("{} substeps/frame, driven", solver_.substeps_per_frame());
   }
-  hybrid::SimulationState state() const override { return {frame_, state_, {}, {}, {}, {}}; }
-  void set_state(const hybrid::SimulationState& state) override {
+  sim::SimulationState state() const override { return {frame_, state_, {}, {}, {}, {}}; }
+  void set_state(const sim::SimulationState& state) override {
     if (state.physics.x_m.size() != state_.x_m.size() ||
         state.physics.v_m_s.size() != state_.v_m_s.size())
       throw UserError("set_state: the tracking run's state has another size");
@@ -115,29 +115,28 @@ class TrackingSimulation final : public hybrid::Simulation {
 };
 
 // The frames of `simulation` for `scene` into a record, through the frame loop.
-void record_frames(hybrid::Simulation& simulation, const Scene& scene, int frames,
-                   RunRecord& record, Progress* progress) {
+void record_frames(sim::Simulation& simulation, const Scene& scene, int frames, RunRecord& record,
+                   Progress* progress) {
   StageTimes times;
   simulation.register_stages(times);
   RecordSink sink(record, times);
-  std::vector<hybrid::FrameSink*> sinks = {&sink};
+  std::vector<sim::FrameSink*> sinks = {&sink};
   if (progress) sinks.push_back(progress);
-  const hybrid::FrameRunResult result =
-      hybrid::run_frames(simulation, scene, 0, frames, sinks, {&times});
+  const sim::FrameRunResult result = sim::run_frames(simulation, scene, 0, frames, sinks, {&times});
   if (progress) progress->done();
   switch (result.end) {
-    case hybrid::FrameRunEnd::kInterruptedDuring:
-    case hybrid::FrameRunEnd::kInterruptedAfter:  // the run is not finished: a record of it
-                                                  // would measure something else
+    case sim::FrameRunEnd::kInterruptedDuring:
+    case sim::FrameRunEnd::kInterruptedAfter:  // the run is not finished: a record of it
+                                               // would measure something else
       throw Interrupted(fmt::format("stopped by a signal in frame {} of {} of scene \"{}\"",
                                     result.frame, frames, scene.name));
-    case hybrid::FrameRunEnd::kDiverged:
+    case sim::FrameRunEnd::kDiverged:
       record.status = {RunState::kDiverged,
                        fmt::format("at t = {:.4g} s (frame {}): {}", result.frame / scene.fps,
                                    result.frame, result.reason)};
       break;
-    case hybrid::FrameRunEnd::kComplete:
-    case hybrid::FrameRunEnd::kStoppedBySink:
+    case sim::FrameRunEnd::kComplete:
+    case sim::FrameRunEnd::kStoppedBySink:
       break;
   }
   average_times(record);
@@ -146,7 +145,7 @@ void record_frames(hybrid::Simulation& simulation, const Scene& scene, int frame
 }  // namespace
 
 RunRecord record_run(const Scene& scene, Progress* progress) {
-  const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
+  const std::unique_ptr<sim::Simulation> simulation = sim::make_simulation(scene);
   RunRecord record;
   record.lattice = simulation->lattice();
   record.fps = scene.fps;

@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 
 #include "flagsim/core/errors.hpp"
-#include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/scene/scene_keys.hpp"
 #include "flagsim/scene/scene_parser.hpp"
+#include "flagsim/sim/simulation.hpp"
 
 namespace flagsim::app {
 
@@ -21,7 +21,7 @@ Scene load_scene(const std::string& scene_path, const std::vector<std::string>& 
 
 int validate_command(const std::string& scene_path, const std::vector<std::string>& sets) {
   const Scene scene = load_scene(scene_path, sets);
-  const std::unique_ptr<hybrid::Simulation> simulation = hybrid::make_simulation(scene);
+  const std::unique_ptr<sim::Simulation> simulation = sim::make_simulation(scene);
   std::string stepping;
   for (const NamedNumber& number : simulation->numbers())
     stepping += fmt::format(", {} {:.4g}{}", number.name, number.value,
@@ -31,7 +31,7 @@ int validate_command(const std::string& scene_path, const std::vector<std::strin
              to_string(scene.mode), scene.flag.fine_rows, scene.flag.fine_cols,
              scene.simulated_frames(), scene.fps, fmt::join(simulation->effects(), ","), stepping);
   for (const std::string& note : scene.notes) fmt::print("{}\n", note);
-  if (auto note = hybrid::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
+  if (auto note = sim::wrinkle_resolution_note(scene)) fmt::print("{}\n", *note);
   return int(ExitCode::kSuccess);
 }
 

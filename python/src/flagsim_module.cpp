@@ -26,12 +26,12 @@
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/strain.hpp"
-#include "flagsim/hybrid/frame_runner.hpp"
-#include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/scene/scene.hpp"
 #include "flagsim/scene/scene_parser.hpp"
+#include "flagsim/sim/frame_runner.hpp"
+#include "flagsim/sim/simulation.hpp"
 #include "run_command.hpp"
 
 namespace py = pybind11;
@@ -64,25 +64,25 @@ class PySimulation {
         from_file_(toml_text && from_file),
         overrides_(std::move(overrides)),
         scene_(parse_scene(text_, source_, overrides_)),
-        simulation_(hybrid::make_simulation(scene_)) {}
+        simulation_(sim::make_simulation(scene_)) {}
 
   void step(int frames) {
     if (frames < 0) throw UserError(fmt_frames(frames));
     if (frames == 0) return;
     if (diverged_) throw std::runtime_error("the simulation diverged earlier: " + *diverged_);
-    const hybrid::FrameRunResult result =
-        hybrid::run_frames(*simulation_, scene_, frame_ + 1, frame_ + 1 + frames, {});
+    const sim::FrameRunResult result =
+        sim::run_frames(*simulation_, scene_, frame_ + 1, frame_ + 1 + frames, {});
     switch (result.end) {
-      case hybrid::FrameRunEnd::kComplete:
-      case hybrid::FrameRunEnd::kInterruptedAfter:  // a whole frame: the state is at it
-      case hybrid::FrameRunEnd::kStoppedBySink:
+      case sim::FrameRunEnd::kComplete:
+      case sim::FrameRunEnd::kInterruptedAfter:  // a whole frame: the state is at it
+      case sim::FrameRunEnd::kStoppedBySink:
         frame_ = result.frame;
         break;
-      case hybrid::FrameRunEnd::kDiverged:
+      case sim::FrameRunEnd::kDiverged:
         frame_ = result.frame;
         diverged_ = fmt_diverged(result.reason);
         throw std::runtime_error(*diverged_);
-      case hybrid::FrameRunEnd::kInterruptedDuring:
+      case sim::FrameRunEnd::kInterruptedDuring:
         frame_ = result.frame;
         break;
     }
@@ -95,8 +95,8 @@ class PySimulation {
   /// Continues from a state() of a simulation of the same scene (also one taken before a
   /// divergence: the divergence is forgotten).
   void set_state(const py::dict& state);
-  const hybrid::Simulation& simulation() const { return *simulation_; }
-  hybrid::Simulation& mutable_simulation() { return *simulation_; }
+  const sim::Simulation& simulation() const { return *simulation_; }
+  sim::Simulation& mutable_simulation() { return *simulation_; }
   std::pair<int, int> coarse_shape() const {
     const auto [rows, cols] = simulation_->coarse_indices();
     return {int(rows.size()), int(cols.size())};
@@ -125,7 +125,7 @@ class PySimulation {
   bool from_file_;
   std::vector<std::string> overrides_;
   Scene scene_;
-  std::unique_ptr<hybrid::Simulation> simulation_;
+  std::unique_ptr<sim::Simulation> simulation_;
   int frame_ = 0;
   std::optional<std::string> diverged_;
 };
@@ -159,7 +159,7 @@ std::vector<Vec3> nodes_of(const py::dict& state, const char* key, int rows, int
 }
 
 py::dict PySimulation::state() const {
-  const hybrid::SimulationState s = simulation_->state();
+  const sim::SimulationState s = simulation_->state();
   const Lattice& dense = simulation_->lattice();
   const auto [coarse_rows, coarse_cols] = coarse_shape();
   py::dict out;
@@ -215,8 +215,8 @@ void PySimulation::set_state(const py::dict& state) {
     throw UserError("set_state: 'frame' must be 0 or more and 'time' finite");
   const Lattice& dense = simulation_->lattice();
   const auto [coarse_rows, coarse_cols] = coarse_shape();
-  const hybrid::SimulationState now = simulation_->state();
-  hybrid::SimulationState s;
+  const sim::SimulationState now = simulation_->state();
+  sim::SimulationState s;
   s.frame = frame;
   std::vector<Vec3> x = nodes_of(state, "positions", dense.rows, dense.cols);
   std::vector<Vec3> v = nodes_of(state, "velocities", dense.rows, dense.cols);

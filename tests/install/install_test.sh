@@ -12,7 +12,7 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
 test -f "$tmp/prefix/lib/cmake/flagsim/flagsimConfig.cmake"
-test -f "$tmp/prefix/include/flagsim/hybrid/simulation.hpp"
+test -f "$tmp/prefix/include/flagsim/sim/simulation.hpp"
 "$tmp/prefix/bin/flag-sim" --version >/dev/null
 # No path back into the source or build tree may be left in the package.
 if grep -rl -e "$build" -e "$(cd "$here/../.." && pwd)/" "$tmp/prefix/lib/cmake/flagsim"; then

@@ -5,15 +5,15 @@
 #include <string>
 #include <vector>
 
-#include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/scene/scene_parser.hpp"
+#include "flagsim/sim/simulation.hpp"
 
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::atoi(argv[1]) : 5;
   const std::vector<std::string> overrides = {"flag.fine=[17,25]"};
   const flagsim::Scene scene =
       flagsim::parse_scene(flagsim::default_scene_toml(), flagsim::kDefaultSceneName, overrides);
-  const auto simulation = flagsim::hybrid::make_simulation(scene);
+  const auto simulation = flagsim::sim::make_simulation(scene);
   for (int f = 0; f < frames; ++f) simulation->advance_frame(nullptr);
   const flagsim::Lattice& lattice = simulation->lattice();
   const flagsim::Vec3 end =

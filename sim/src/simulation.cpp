@@ -1,4 +1,4 @@
-#include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/sim/simulation.hpp"
 
 #include <fmt/format.h>
 
@@ -12,12 +12,12 @@
 #include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
-#include "flagsim/hybrid/divergence.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/keyframes.hpp"
 #include "flagsim/infill/strain_limit.hpp"
+#include "flagsim/sim/divergence.hpp"
 
-namespace flagsim::hybrid {
+namespace flagsim::sim {
 namespace {
 
 // Root attributes describing the physics stepping, in every mode that has physics.
@@ -487,4 +487,4 @@ std::unique_ptr<Simulation> make_replay(const Scene& scene, CoarseFrames coarse)
   return std::make_unique<HybridSimulation>(scene, std::move(coarse));
 }
 
-}  // namespace flagsim::hybrid
+}  // namespace flagsim::sim

@@ -1,4 +1,4 @@
-#include "flagsim/hybrid/simulation.hpp"
+#include "flagsim/sim/simulation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "flagsim/scene/scene_parser.hpp"
 #include "tolerances.hpp"
 
-namespace flagsim::hybrid {
+namespace flagsim::sim {
 namespace {
 
 // The default scene (9 x 13 coarse) on a 33 x 49 dense lattice, with `more` overrides.
@@ -278,4 +278,4 @@ TEST(SimulationState, ASceneBuiltInCodeIsCheckedAndMayGoBeforeItsSimulation) {
 }
 
 }  // namespace
-}  // namespace flagsim::hybrid
+}  // namespace flagsim::sim

@@ -18,7 +18,7 @@
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/scene/scene.hpp"
 
-namespace flagsim::hybrid {
+namespace flagsim::sim {
 
 /// Everything a simulation continues from (Simulation::state): stepping on
 /// from a restored state gives the same bytes as stepping on from where it was
@@ -108,4 +108,4 @@ using CoarseFrames = std::function<void(int frame, std::vector<Vec3>& out)>;
 /// for what the file says of it (effects, stepping) but never stepped.
 std::unique_ptr<Simulation> make_replay(const Scene& scene, CoarseFrames coarse);
 
-}  // namespace flagsim::hybrid
+}  // namespace flagsim::sim

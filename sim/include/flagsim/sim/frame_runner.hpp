@@ -9,10 +9,10 @@
 
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
-#include "flagsim/hybrid/simulation.hpp"
 #include "flagsim/scene/scene.hpp"
+#include "flagsim/sim/simulation.hpp"
 
-namespace flagsim::hybrid {
+namespace flagsim::sim {
 
 /// A frame the runner advanced to and found good, as its sinks see it.
 struct CheckedFrame {
@@ -68,4 +68,4 @@ struct FrameRunOptions {
 FrameRunResult run_frames(Simulation& simulation, const Scene& scene, int first, int end,
                           std::span<FrameSink* const> sinks, const FrameRunOptions& options = {});
 
-}  // namespace flagsim::hybrid
+}  // namespace flagsim::sim

@@ -1,4 +1,4 @@
-#include "flagsim/hybrid/divergence.hpp"
+#include "flagsim/sim/divergence.hpp"
 
 #include <gtest/gtest.h>
 

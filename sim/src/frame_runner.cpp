@@ -1,11 +1,11 @@
-#include "flagsim/hybrid/frame_runner.hpp"
+#include "flagsim/sim/frame_runner.hpp"
 
 #include <chrono>
 #include <vector>
 
 #include "flagsim/core/stop_request.hpp"
 
-namespace flagsim::hybrid {
+namespace flagsim::sim {
 
 FrameRunResult run_frames(Simulation& simulation, const Scene& scene, int first, int end,
                           std::span<FrameSink* const> sinks, const FrameRunOptions& options) {
@@ -49,4 +49,4 @@ FrameRunResult run_frames(Simulation& simulation, const Scene& scene, int first,
   return result;
 }
 
-}  // namespace flagsim::hybrid
+}  // namespace flagsim::sim

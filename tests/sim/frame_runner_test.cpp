@@ -1,4 +1,4 @@
-#include "flagsim/hybrid/frame_runner.hpp"
+#include "flagsim/sim/frame_runner.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include "flagsim/core/strain.hpp"
 #include "flagsim/scene/scene_parser.hpp"
 
-namespace flagsim::hybrid {
+namespace flagsim::sim {
 namespace {
 
 Scene small_scene(std::vector<std::string> more = {}) {
@@ -133,4 +133,4 @@ TEST(FrameRunner, AStopRequestEndsTheRunAfterAWholeFrameOrSaysTheFrameWasCutShor
 }
 
 }  // namespace
-}  // namespace flagsim::hybrid
+}  // namespace flagsim::sim
