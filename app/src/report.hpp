@@ -30,6 +30,8 @@ struct ReportRow {
   std::string best_reference;
   std::optional<double> speedup_vs_best_reference;
   std::uint64_t seed = 0;  ///< the run's scene.seed (sweep --seeds: one row per point and seed)
+  /// [pole] radius, m, when the pole is a solid (sweep --pole-radius); empty otherwise.
+  std::optional<double> pole_radius_m;
 };
 
 /// Where the metrics look: the short horizon (first `horizon_s`), and the

@@ -426,6 +426,25 @@ TEST(Sweep, SlurmScriptsRunAsTheSweep) {
   EXPECT_FALSE(fs::exists(dir.file("j2")));
 }
 
+TEST(Sweep, PoleRadiiSideBySideWithTheRadiusInItsColumn) {
+  // --pole-radius 0,0.04: the scene's own pole (here none: a line) and a solid of 4 cm; the
+  // column says which row is which, empty where the pole is not a solid.
+  TempDir dir;
+  std::vector<std::string> args = {"sweep",  "--coarse", "9x13",  "--pole-radius",
+                                   "0,0.04", "-o",       "p.csv", "--quiet"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  const ProcessResult result = run_flag_sim(args, dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto csv = read_csv(dir.file("p.csv"));
+  ASSERT_EQ(csv.size(), 4u);  // header, the reference, the two points
+  const std::size_t radius = column(csv, "pole_radius_m");
+  EXPECT_EQ(csv[1][radius], "");  // the reference runs the scene as it is
+  EXPECT_EQ(csv[2][radius], "");
+  EXPECT_EQ(csv[3][radius], "0.04");
+  EXPECT_NE(csv[3][column(csv, "label")].find("pole 0.04 m"), std::string::npos);
+  for (std::size_t row = 1; row < 4; ++row) EXPECT_EQ(csv[row][column(csv, "status")], "complete");
+}
+
 TEST(Sweep, BackendsSideBySide) {
   TempDir dir;
   std::vector<std::string> args = {"sweep",
