@@ -496,7 +496,8 @@ int run_command(const RunOptions& options) {
       break;
     case sim::FrameRunEnd::kDiverged:
       status = {RunState::kDiverged,
-                fmt::format("at t = {:.4g} s (frame {}): {}", at_s, result.frame, result.reason)};
+                fmt::format("at t = {:.4g} s (frame {}): {}", at_s, result.frame,
+                            describe(*result.divergence, scene))};
       break;
     case sim::FrameRunEnd::kInterruptedDuring:
       status = {RunState::kInterrupted,

@@ -133,7 +133,7 @@ void record_frames(sim::Simulation& simulation, const Scene& scene, int frames, 
     case sim::FrameRunEnd::kDiverged:
       record.status = {RunState::kDiverged,
                        fmt::format("at t = {:.4g} s (frame {}): {}", result.frame / scene.fps,
-                                   result.frame, result.reason)};
+                                   result.frame, describe(*result.divergence, scene))};
       break;
     case sim::FrameRunEnd::kComplete:
     case sim::FrameRunEnd::kStoppedBySink:

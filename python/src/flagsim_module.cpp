@@ -80,7 +80,7 @@ class PySimulation {
         break;
       case sim::FrameRunEnd::kDiverged:
         frame_ = result.frame;
-        diverged_ = fmt_diverged(result.reason);
+        diverged_ = fmt_diverged(describe(*result.divergence, scene_));
         throw std::runtime_error(*diverged_);
       case sim::FrameRunEnd::kInterruptedDuring:
         frame_ = result.frame;

@@ -26,10 +26,8 @@ FrameRunResult run_frames(Simulation& simulation, const Scene& scene, int first,
     checked.time_s = frame / scene.fps;
     run_timed(options.times, options.checks_stage, [&] {
       checked.strain = link_strain(simulation.lattice(), simulation.positions(), node_strain);
-      if (std::optional<std::string> why = frame_divergence(simulation, scene, checked.strain)) {
-        result.end = FrameRunEnd::kDiverged;
-        result.reason = std::move(*why);
-      }
+      result.divergence = frame_divergence(simulation, scene, checked.strain);
+      if (result.divergence) result.end = FrameRunEnd::kDiverged;
     });
     if (result.end == FrameRunEnd::kDiverged) return result;
     checked.node_strain = node_strain;

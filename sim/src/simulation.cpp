@@ -416,35 +416,25 @@ class HybridSimulation final : public Simulation {
 
 }  // namespace
 
-std::optional<std::string> frame_divergence(const Simulation& simulation, const Scene& scene,
-                                            const StrainStats& strain) {
-  if (std::optional<std::string> failed = simulation.physics_failure()) return failed;
-  std::optional<std::string> why =
-      divergence_reason(simulation.positions(), simulation.velocities(), strain, scene.limits);
-  if (!why) return why;
-  if (const std::string advice = simulation.physics_advice(); !advice.empty())
-    *why += "; " + advice;
+std::optional<Divergence> frame_divergence(const Simulation& simulation, const Scene& scene,
+                                           const StrainStats& strain) {
+  using Cause = Divergence::Cause;
+  if (std::optional<std::string> failed = simulation.physics_failure())
+    return Divergence{Cause::kPhysicsFailure, 0.0, 0.0, std::move(*failed)};
+  std::optional<Divergence> found =
+      find_divergence(simulation.positions(), simulation.velocities(), strain, scene.limits);
+  if (!found) return found;
+  found->detail = simulation.physics_advice();
   if (scene.mode == Mode::kInfill && strain.max <= scene.limits.max_strain) {
     // No physics moves an infill-mode cloth: a node this fast follows the keyframes.
     double fastest = 0.0;
     for (const Vec3& v : simulation.velocities()) fastest = std::max(fastest, v.norm());
     if (std::isfinite(fastest) && fastest > scene.limits.max_speed_m_s)
-      return fmt::format(
-          "a node moves at {:.3g} m/s, above limits.max_speed = {:.3g} m/s: the keyframes move "
-          "the corners that fast; space them further apart in time or raise limits.max_speed",
-          fastest, scene.limits.max_speed_m_s);
+      return Divergence{Cause::kKeyframeSpeed, fastest, scene.limits.max_speed_m_s, {}};
   }
   const std::optional<infill::FillReport> report = simulation.infill_report();
-  if (!report || report->converged || strain.max <= scene.limits.max_strain) return why;
-  const bool paper = infill_solver_of(scene) == InfillSolverKind::kPaper;
-  return fmt::format(
-      "max link strain {:.3g} exceeds limits.max_strain = {:.3g}, and the infill ({} solver) did "
-      "not reach its tolerance in this frame: the infill failed, not the cloth; {}",
-      strain.max, scene.limits.max_strain, paper ? "paper" : "smooth",
-      paper ? fmt::format("raise infill.relax_iterations (now {}), use [infill] solver = "
-                          "\"smooth\", or give it smaller cells (flag.coarse)",
-                          paper_relax_sweeps_of(scene))
-            : std::string("give it smaller cells (flag.coarse) or a gentler coarse motion"));
+  if (!report || report->converged || strain.max <= scene.limits.max_strain) return found;
+  return Divergence{Cause::kInfillUnconverged, strain.max, scene.limits.max_strain, {}};
 }
 
 std::optional<std::string> wrinkle_resolution_note(const Scene& scene) {

@@ -3,30 +3,74 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
+
+#include "flagsim/scene/scene_parser.hpp"
 
 namespace flagsim {
 namespace {
 
+using Cause = Divergence::Cause;
+
 TEST(Divergence, HealthyStatePasses) {
   const std::vector<Vec3> x(4, Vec3(1, 2, 3)), v(4, Vec3(0.5, 0, 0));
-  EXPECT_FALSE(divergence_reason(x, v, {0.01, 0.005}, Limits{}).has_value());
+  EXPECT_FALSE(find_divergence(x, v, {0.01, 0.005}, Limits{}).has_value());
 }
 
-TEST(Divergence, NamesEachCause) {
+TEST(Divergence, NamesEachCauseWithItsNumbersAndWordsThatSayWhatToChange) {
   std::vector<Vec3> x(4, Vec3::Zero()), v(4, Vec3::Zero());
-  Limits limits;
-  limits.max_strain = 0.1;
-  limits.max_speed_m_s = 50.0;
+  Scene scene = parse_scene(default_scene_toml(), kDefaultSceneName, std::vector<std::string>{});
+  scene.limits.max_strain = 0.1;
+  scene.limits.max_speed_m_s = 50.0;
+  const Limits& limits = scene.limits;
+  const auto words = [&](const Divergence& d) { return describe(d, scene); };
   x[2].z() = INFINITY;
-  EXPECT_NE(divergence_reason(x, v, {}, limits)->find("position"), std::string::npos);
+  std::optional<Divergence> found = find_divergence(x, v, {}, limits);
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->cause, Cause::kPositionNotFinite);
+  EXPECT_EQ(words(*found), "a node position became NaN or infinite");
   x[2].z() = 0.0;
   v[1].x() = std::nan("");
-  EXPECT_NE(divergence_reason(x, v, {}, limits)->find("velocity"), std::string::npos);
+  found = find_divergence(x, v, {}, limits);
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->cause, Cause::kVelocityNotFinite);
+  EXPECT_EQ(words(*found), "a node velocity became NaN or infinite");
   v[1].x() = 60.0;
-  EXPECT_NE(divergence_reason(x, v, {}, limits)->find("max_speed"), std::string::npos);
+  found = find_divergence(x, v, {}, limits);
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->cause, Cause::kSpeed);
+  EXPECT_EQ(found->value, 60.0);
+  EXPECT_EQ(found->limit, 50.0);
+  EXPECT_EQ(words(*found),
+            "a node moves at 60 m/s, above limits.max_speed = 50 m/s (energy blow-up); raise "
+            "solver.substeps or flag.damping");
   v[1].x() = 0.0;
-  EXPECT_NE(divergence_reason(x, v, {0.2, 0.1}, limits)->find("max_strain"), std::string::npos);
-  EXPECT_TRUE(divergence_reason(x, v, {std::nan(""), 0.0}, limits).has_value());
+  found = find_divergence(x, v, {0.2, 0.1}, limits);
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->cause, Cause::kStrain);
+  EXPECT_EQ(found->value, 0.2);
+  EXPECT_EQ(words(*found),
+            "max link strain 0.2 exceeds limits.max_strain = 0.1; raise flag.stretch_modulus, "
+            "lower the loads, or raise the limit if this much stretch is intended");
+  // A strain that is not a number is past any limit.
+  found = find_divergence(x, v, {std::nan(""), 0.0}, limits);
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->cause, Cause::kStrain);
+  // What the physics backend adds follows its cause; its own failure is its words alone.
+  found->detail = "raise solver.substeps (now 7 a frame)";
+  EXPECT_NE(words(*found).find("intended; raise solver.substeps (now 7 a frame)"),
+            std::string::npos);
+  EXPECT_EQ(words({Cause::kPhysicsFailure, 0.0, 0.0, "Newton did not converge"}),
+            "Newton did not converge");
+  // The infill's failure names the solver and its knob.
+  EXPECT_NE(words({Cause::kInfillUnconverged, 0.2, 0.1, {}})
+                .find("the infill (smooth solver) did not reach its tolerance"),
+            std::string::npos);
+  scene.infill = InfillSettings{};
+  scene.infill->solver = InfillSolverKind::kPaper;
+  EXPECT_NE(words({Cause::kInfillUnconverged, 0.2, 0.1, {}}).find("raise infill.relax_iterations"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -125,11 +125,13 @@ TEST(HybridSimulation, AFrameWithinTheLimitsHasNoDivergenceAndOneOutsideSaysWhic
   EXPECT_FALSE(frame_divergence(*hybrid, scene, strain).has_value());
   // The infill converged in this frame, so an overstretched link is the cloth's.
   ASSERT_TRUE(hybrid->infill_report()->converged);
-  const std::optional<std::string> why =
+  const std::optional<Divergence> found =
       frame_divergence(*hybrid, scene, StrainStats{2 * scene.limits.max_strain, 0.0});
-  ASSERT_TRUE(why.has_value());
-  EXPECT_NE(why->find("limits.max_strain"), std::string::npos) << *why;
-  EXPECT_EQ(why->find("the infill failed"), std::string::npos) << *why;
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->cause, Divergence::Cause::kStrain);
+  const std::string why = describe(*found, scene);
+  EXPECT_NE(why.find("limits.max_strain"), std::string::npos) << why;
+  EXPECT_EQ(why.find("the infill failed"), std::string::npos) << why;
 }
 
 TEST(HybridSimulation, NotesWrinklesFinerThanTheLatticeCarriesAndOnlyThose) {

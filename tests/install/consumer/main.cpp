@@ -1,12 +1,13 @@
-// The embedded default scene at 17 x 25, stepped FRAMES frames through the
-// installed library: prints the middle row's fly-end node, m, with every digit.
+// The embedded default scene at 17 x 25, FRAMES frames run through the
+// installed library's frame loop (each checked): prints the middle row's
+// fly-end node, m, with every digit; exit 3 if a frame diverged.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "flagsim/scene/scene_parser.hpp"
-#include "flagsim/sim/simulation.hpp"
+#include "flagsim/sim/frame_runner.hpp"
 
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::atoi(argv[1]) : 5;
@@ -14,7 +15,14 @@ int main(int argc, char** argv) {
   const flagsim::Scene scene =
       flagsim::parse_scene(flagsim::default_scene_toml(), flagsim::kDefaultSceneName, overrides);
   const auto simulation = flagsim::sim::make_simulation(scene);
-  for (int f = 0; f < frames; ++f) simulation->advance_frame(nullptr);
+  const flagsim::sim::FrameRunResult ran =
+      flagsim::sim::run_frames(*simulation, scene, 1, frames + 1, {});
+  if (ran.end != flagsim::sim::FrameRunEnd::kComplete) {
+    const std::string why =
+        ran.divergence ? flagsim::describe(*ran.divergence, scene) : "stopped by a signal";
+    std::fprintf(stderr, "frame %d: %s\n", ran.frame, why.c_str());
+    return 3;
+  }
   const flagsim::Lattice& lattice = simulation->lattice();
   const flagsim::Vec3 end =
       simulation->positions()[lattice.index(lattice.rows / 2, lattice.cols - 1)];

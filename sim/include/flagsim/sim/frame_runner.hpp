@@ -3,13 +3,14 @@
 // the runs compare and sweep record, Python's step) advances and checks its
 // frames here, and hands each good frame to its sinks (the HDF5 writer, a run
 // record, the progress line). How a run of frames ended comes back as data
-// (FrameRunEnd); the command line and Python turn it into words.
+// (FrameRunEnd, Divergence); the command line and Python turn it into words.
+#include <optional>
 #include <span>
-#include <string>
 
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/scene/scene.hpp"
+#include "flagsim/sim/divergence.hpp"
 #include "flagsim/sim/simulation.hpp"
 
 namespace flagsim::sim {
@@ -38,7 +39,7 @@ class FrameSink {
 /// How a run of frames ended.
 enum class FrameRunEnd {
   kComplete,           ///< every frame asked for was taken
-  kDiverged,           ///< a frame could not be trusted (FrameRunResult::reason); not taken
+  kDiverged,           ///< a frame could not be trusted (FrameRunResult::divergence); not taken
   kInterruptedDuring,  ///< a stop request cut a frame short; the simulation is not at a frame
   kInterruptedAfter,   ///< a stop request arrived after a whole frame, with frames still to go
   kStoppedBySink,      ///< a sink's take() returned false
@@ -49,7 +50,8 @@ struct FrameRunResult {
   /// The frame the run ended in: the last one taken (kComplete,
   /// kInterruptedAfter), or the one diverged, cut short or refused.
   int frame = -1;
-  std::string reason;  ///< kDiverged: frame_divergence's account
+  /// kDiverged: why, as data (frame_divergence); describe() gives the words.
+  std::optional<Divergence> divergence;
 };
 
 struct FrameRunOptions {

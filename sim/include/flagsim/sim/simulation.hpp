@@ -17,6 +17,7 @@
 #include "flagsim/core/strain.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/scene/scene.hpp"
+#include "flagsim/sim/divergence.hpp"
 
 namespace flagsim::sim {
 
@@ -87,12 +88,14 @@ class Simulation {
 /// zigzag of the lattice and 3.5 clamps the wave count); nullopt otherwise.
 std::optional<std::string> wrinkle_resolution_note(const Scene& scene);
 
-/// Why the simulation's current frame cannot be trusted (divergence_reason()),
-/// or nullopt. When the links are overstretched in a frame where the infill
-/// reported that it did not reach its tolerance, the message blames the infill
-/// and says what to change there: the cloth's physics did not fail.
-std::optional<std::string> frame_divergence(const Simulation& simulation, const Scene& scene,
-                                            const StrainStats& strain);
+/// Why the simulation's current frame cannot be trusted, or nullopt: the
+/// physics backend's own failure, or find_divergence() with what the backend
+/// adds (its advice in Divergence::detail). In infill mode a node too fast
+/// under the strain limit is the keyframes' doing (kKeyframeSpeed); links
+/// overstretched in a frame where the infill did not reach its tolerance are
+/// the infill's failure, not the cloth's (kInfillUnconverged).
+std::optional<Divergence> frame_divergence(const Simulation& simulation, const Scene& scene,
+                                           const StrainStats& strain);
 
 /// The simulation of the scene's mode, at its frame 0.
 std::unique_ptr<Simulation> make_simulation(const Scene& scene);
