@@ -14,7 +14,6 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
-#include "flagsim/core/strain.hpp"
 #include "flagsim/core/version.hpp"
 #include "flagsim/data/frame_writer.hpp"
 #include "flagsim/data/output_reader.hpp"

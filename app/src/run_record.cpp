@@ -8,12 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <string_view>
+#include <tuple>
 
 #include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/stage_times.hpp"
-#include "flagsim/core/stop_request.hpp"
-#include "flagsim/core/strain.hpp"
 #include "flagsim/sim/divergence.hpp"
 #include "flagsim/sim/frame_runner.hpp"
 #include "flagsim/sim/simulation.hpp"
@@ -114,9 +113,15 @@ class TrackingSimulation final : public sim::Simulation {
   int frame_ = 0;
 };
 
-// The frames of `simulation` for `scene` into a record, through the frame loop.
+// The frames of `simulation` for `scene` into a record (with the lattice, the
+// coarse nodes' places and the stepping), through the frame loop.
 void record_frames(sim::Simulation& simulation, const Scene& scene, int frames, RunRecord& record,
                    Progress* progress) {
+  record.lattice = simulation.lattice();
+  record.fps = scene.fps;
+  std::tie(record.coarse_rows, record.coarse_cols) = simulation.coarse_indices();
+  for (const NamedNumber& number : simulation.numbers())
+    if (number.name == "substeps_per_frame") record.substeps_per_frame = int(number.value);
   StageTimes times;
   simulation.register_stages(times);
   RecordSink sink(record, times);
@@ -147,12 +152,7 @@ void record_frames(sim::Simulation& simulation, const Scene& scene, int frames, 
 RunRecord record_run(const Scene& scene, Progress* progress) {
   const std::unique_ptr<sim::Simulation> simulation = sim::make_simulation(scene);
   RunRecord record;
-  record.lattice = simulation->lattice();
-  record.fps = scene.fps;
   record.scene_toml = scene.toml_text;
-  std::tie(record.coarse_rows, record.coarse_cols) = simulation->coarse_indices();
-  for (const NamedNumber& number : simulation->numbers())
-    if (number.name == "substeps_per_frame") record.substeps_per_frame = int(number.value);
   record_frames(*simulation, scene, scene.simulated_frames(), record, progress);
   return record;
 }
@@ -161,9 +161,6 @@ RunRecord record_tracking(const Scene& scene, const RunRecord& hybrid, Progress*
   const Scene full = in_mode(scene, Mode::kMassSpring);
   TrackingSimulation simulation(full, hybrid);
   RunRecord record;
-  record.lattice = simulation.lattice();
-  record.fps = full.fps;
-  record.substeps_per_frame = int(simulation.numbers().front().value);
   record_frames(simulation, full, int(hybrid.frames.size()), record, progress);
   return record;
 }

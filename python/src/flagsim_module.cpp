@@ -25,7 +25,6 @@
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/lattice.hpp"
-#include "flagsim/core/strain.hpp"
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/scene/scene.hpp"
@@ -72,19 +71,10 @@ class PySimulation {
     if (diverged_) throw std::runtime_error("the simulation diverged earlier: " + *diverged_);
     const sim::FrameRunResult result =
         sim::run_frames(*simulation_, scene_, frame_ + 1, frame_ + 1 + frames, {});
-    switch (result.end) {
-      case sim::FrameRunEnd::kComplete:
-      case sim::FrameRunEnd::kInterruptedAfter:  // a whole frame: the state is at it
-      case sim::FrameRunEnd::kStoppedBySink:
-        frame_ = result.frame;
-        break;
-      case sim::FrameRunEnd::kDiverged:
-        frame_ = result.frame;
-        diverged_ = fmt_diverged(describe(*result.divergence, scene_));
-        throw std::runtime_error(*diverged_);
-      case sim::FrameRunEnd::kInterruptedDuring:
-        frame_ = result.frame;
-        break;
+    frame_ = result.frame;  // the last frame made (no sinks, and Python raises no stop request)
+    if (result.end == sim::FrameRunEnd::kDiverged) {
+      diverged_ = fmt_diverged(describe(*result.divergence, scene_));
+      throw std::runtime_error(*diverged_);
     }
   }
   double time() const { return frame_ / scene_.fps; }
