@@ -29,6 +29,48 @@ double outside(double relative, const LinkBand& band) {
   return std::max({0.0, band.lower - relative, relative - band.upper});
 }
 
+// Whether each of the `n` links from here[k] to next[k] is outside its squared
+// bounds [low2[k], high2[k]]: `outside[k] |= 1` for every one that is (with
+// `any_only`, only outside[0], for any of them). Four links at a time; the
+// squared lengths are those of Vec3::squaredNorm (the same operations in the
+// same order), so the flags are the scalar loop's.
+__attribute__((target_clones("avx2", "default"))) void flag_outside(
+    const Vec3* here, const Vec3* next, const double* low2, const double* high2, int n,
+    bool any_only, std::uint8_t* outside) {
+  using lanes::Lanes;
+  constexpr int L = lanes::kWidth;
+  int k = 0;
+  auto any = lanes::splat(0.0) < lanes::splat(0.0);  // all false
+  for (; k + L <= n; k += L) {
+    Lanes dx, dy, dz;
+    for (int l = 0; l < L; ++l) {
+      dx[l] = next[k + l].x() - here[k + l].x();
+      dy[l] = next[k + l].y() - here[k + l].y();
+      dz[l] = next[k + l].z() - here[k + l].z();
+    }
+    const Lanes length2 = dx * dx + dy * dy + dz * dz;
+    const auto out = (length2 < lanes::load(low2 + k)) | (length2 > lanes::load(high2 + k));
+    if (any_only) {
+      any |= out;
+    } else {
+      for (int l = 0; l < L; ++l) outside[k + l] |= std::uint8_t(out[l] != 0);
+    }
+  }
+  int tail = 0;
+  for (; k < n; ++k) {
+    const double length2 = (next[k] - here[k]).squaredNorm();
+    const int out = int(length2 < low2[k]) | int(length2 > high2[k]);
+    if (any_only)
+      tail |= out;
+    else
+      outside[k] |= std::uint8_t(out);
+  }
+  if (any_only) {
+    for (int l = 0; l < L; ++l) tail |= int(any[l] != 0);
+    outside[0] |= std::uint8_t(tail);
+  }
+}
+
 }  // namespace
 
 FiberProjection::FiberProjection(const Lattice& fine)
@@ -199,7 +241,7 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   // Which fibers have a link outside its band by more than the tolerance:
   // squared lengths against squared bounds (set up by project()), no square
   // root and no branch, row-major order for both families (a column's links
-  // are K apart), so the loop vectorises.
+  // are K apart), four links at a time (flag_outside).
   const int steps_before = *steps_made;
   fiber_flag_.assign(std::size_t(fibers), check ? 0 : 1);
   const std::vector<double>& low2 = rows ? row_low2_ : col_low2_;
@@ -208,22 +250,9 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   for (int j = 0; j < link_rows && check; ++j) {
     const Vec3* here = positions_m.data() + lattice_.index(j, 0);
     const Vec3* next = rows ? here + 1 : here + K;
-    const double* lo = low2.data() + std::size_t(j) * std::size_t(links_per_row);
-    const double* hi = high2.data() + std::size_t(j) * std::size_t(links_per_row);
-    if (rows) {
-      int outside_any = 0;
-      for (int k = 0; k < links_per_row; ++k) {
-        const double length2 = (next[k] - here[k]).squaredNorm();
-        outside_any |= int(length2 < lo[k]) | int(length2 > hi[k]);
-      }
-      fiber_flag_[std::size_t(j)] = std::uint8_t(outside_any);
-    } else {
-      std::uint8_t* flag = fiber_flag_.data();
-      for (int k = 0; k < links_per_row; ++k) {
-        const double length2 = (next[k] - here[k]).squaredNorm();
-        flag[k] |= std::uint8_t(int(length2 < lo[k]) | int(length2 > hi[k]));
-      }
-    }
+    const std::size_t first = std::size_t(j) * std::size_t(links_per_row);
+    flag_outside(here, next, low2.data() + first, high2.data() + first, links_per_row, rows,
+                 rows ? &fiber_flag_[std::size_t(j)] : fiber_flag_.data());
   }
   active_.clear();
   for (int f = 0; f < fibers; ++f)
