@@ -58,29 +58,29 @@ struct BulletCloth::World {
   }
 };
 
-BulletCloth::BulletCloth(const Scene& scene)
-    : model_(make_cloth_model(scene)),
+BulletCloth::BulletCloth(const Scene& scene, std::shared_ptr<const ClothModel> model)
+    : model_(std::move(model)),
       pins_(scene.pole),
-      obstacles_(Obstacles::of(scene, model_.lattice)),
+      obstacles_(Obstacles::of(scene, model_->lattice)),
       world_(std::make_unique<World>()) {
-  rest_m_ = model_.lattice.rest_positions();
+  rest_m_ = model_->lattice.rest_positions();
   const std::size_t n = rest_m_.size();
-  terms_ = make_force_terms(scene, model_, pins_, {.stretch = false, .gravity = false});
-  effects_ = physics_effects(scene, model_);
+  terms_ = make_force_terms(scene, *model_, pins_, {.stretch = false, .gravity = false});
+  effects_ = physics_effects(scene, *model_);
   forces_n_.assign(n, Vec3::Zero());
 
   // Substep: kStabilitySafety of the smallest of the link limit (f = 1) and
   // the explicit terms' limits.
   double link_limit = std::numeric_limits<double>::infinity();
   auto inverse_mass = [&](std::size_t i) {
-    return model_.pinned[i] ? 0.0 : 1.0 / model_.mass_kg[i];
+    return model_->pinned[i] ? 0.0 : 1.0 / model_->mass_kg[i];
   };
-  for (const LinkFamily& family : model_.links)
-    for_each_link(model_, family, [&](std::size_t a, std::size_t b, double k, double) {
+  for (const LinkFamily& family : model_->links)
+    for_each_link(*model_, family, [&](std::size_t a, std::size_t b, double k, double) {
       const double w = inverse_mass(a) + inverse_mass(b);
       if (w > 0.0 && k > 0.0) link_limit = std::min(link_limit, 1.0 / std::sqrt(k * w));
     });
-  stable_substep_s_ = std::min(link_limit, explicit_stability_limit(model_, terms_));
+  stable_substep_s_ = std::min(link_limit, explicit_stability_limit(*model_, terms_));
   frame_s_ = 1.0 / scene.fps;
   substeps_per_frame_ =
       physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
@@ -103,7 +103,7 @@ BulletCloth::BulletCloth(const Scene& scene)
   std::vector<btScalar> m(n);
   for (std::size_t i = 0; i < n; ++i) {
     x[i] = to_bt(rest_m_[i]);
-    m[i] = model_.pinned[i] ? 0.0 : model_.mass_kg[i];
+    m[i] = model_->pinned[i] ? 0.0 : model_->mass_kg[i];
   }
   world_->body = std::make_unique<btSoftBody>(&info, int(n), x.data(), m.data());
   btSoftBody& body = *world_->body;
@@ -120,8 +120,8 @@ BulletCloth::BulletCloth(const Scene& scene)
     return material;
   };
   const int iterations = scene.solver.iterations.value_or(10);
-  for (const LinkFamily& family : model_.links)
-    for_each_link(model_, family, [&](std::size_t a, std::size_t b, double k, double) {
+  for (const LinkFamily& family : model_->links)
+    for_each_link(*model_, family, [&](std::size_t a, std::size_t b, double k, double) {
       const double w = inverse_mass(a) + inverse_mass(b);
       if (w == 0.0 || k <= 0.0) return;  // between two pins: nothing to solve
       body.appendLink(int(a), int(b),
@@ -129,7 +129,7 @@ BulletCloth::BulletCloth(const Scene& scene)
     });
   btSoftBody::Config& cfg = body.m_cfg;
   cfg.piterations = iterations;
-  cfg.kDP = 1.0 - model_.velocity_damping(dt);
+  cfg.kDP = 1.0 - model_->velocity_damping(dt);
   cfg.kDG = 0;
   cfg.kLF = 0;
   cfg.collisions = 0;
@@ -141,7 +141,7 @@ BulletCloth::BulletCloth(const Scene& scene)
   world.setInternalTickCallback(&pre_tick, this, /*isPreTick=*/true);
 
   // The start: rest plus the scene's seeded perturbation (free nodes only).
-  set_state(initial_state(scene, model_));
+  set_state(initial_state(scene, *model_));
 }
 
 BulletCloth::~BulletCloth() = default;
@@ -171,7 +171,7 @@ void BulletCloth::before_substep(double dt_s) {
   const Vec3 velocity = (pins_.offset_m(t + dt_s) - here) / dt_s;
   const std::size_t n = rest_m_.size();
   for (std::size_t i = 0; i < n; ++i) {
-    if (!model_.pinned[i]) continue;
+    if (!model_->pinned[i]) continue;
     btSoftBody::Node& node = body.m_nodes[int(i)];
     node.m_x = to_bt(rest_m_[i] + here);
     node.m_v = to_bt(velocity);
@@ -187,7 +187,7 @@ void BulletCloth::before_substep(double dt_s) {
     run_timed(times_, stage, [&] { terms_[k]->add_forces(state_.x_m, state_.v_m_s, forces_n_); });
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (!model_.pinned[i]) body.addForce(to_bt(forces_n_[i]), int(i));
+    if (!model_->pinned[i]) body.addForce(to_bt(forces_n_[i]), int(i));
 }
 
 void BulletCloth::advance_frame(StageTimes* times) {
@@ -224,9 +224,9 @@ void BulletCloth::project_contacts(double time_s) {
     contact_x_[i] = from_bt(body.m_nodes[int(i)].m_x);
     contact_v_[i] = from_bt(body.m_nodes[int(i)].m_v);
   }
-  if (obstacles_->project(time_s, contact_x_, contact_v_, model_.pinned) == 0) return;
+  if (obstacles_->project(time_s, contact_x_, contact_v_, model_->pinned) == 0) return;
   for (std::size_t i = 0; i < n; ++i) {
-    if (model_.pinned[i]) continue;
+    if (model_->pinned[i]) continue;
     body.m_nodes[int(i)].m_x = to_bt(contact_x_[i]);
     body.m_nodes[int(i)].m_v = to_bt(contact_v_[i]);
   }
@@ -239,7 +239,7 @@ void BulletCloth::read_back() {
     state_.x_m[i] = from_bt(body.m_nodes[int(i)].m_x);
     // Bullet's velocity of a pin is its last displacement, damped by kDP; the
     // pole's is exact.
-    state_.v_m_s[i] = model_.pinned[i] ? pin_velocity : from_bt(body.m_nodes[int(i)].m_v);
+    state_.v_m_s[i] = model_->pinned[i] ? pin_velocity : from_bt(body.m_nodes[int(i)].m_v);
   }
 }
 

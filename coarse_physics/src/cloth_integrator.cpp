@@ -23,18 +23,23 @@ bool ClothIntegrator::set_wind_drift(const WindField::Drift& drift) {
   return false;
 }
 
-std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene) {
+std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene,
+                                                 std::shared_ptr<const ClothModel> model) {
   switch (scene.solver.backend) {
     case Backend::kBullet:
-      return std::make_unique<BulletCloth>(scene);
+      return std::make_unique<BulletCloth>(scene, std::move(model));
     case Backend::kImplicit:
-      return std::make_unique<ImplicitEuler>(scene);
+      return std::make_unique<ImplicitEuler>(scene, std::move(model));
     case Backend::kXpbd:
-      return std::make_unique<Xpbd>(scene);
+      return std::make_unique<Xpbd>(scene, std::move(model));
     case Backend::kSpringDamper:
       break;
   }
-  return std::make_unique<SpringDamperIntegrator>(scene);
+  return std::make_unique<SpringDamperIntegrator>(scene, std::move(model));
+}
+
+std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene) {
+  return make_integrator(scene, std::make_shared<const ClothModel>(make_cloth_model(scene)));
 }
 
 }  // namespace flagsim::physics

@@ -37,12 +37,12 @@ double kinetic_energy_j(std::span<const double> mass_kg, std::span<const Vec3> v
   return total;
 }
 
-ClothModel make_cloth_model(const Scene& scene) {
+ClothModel make_cloth_model(const Material& material, const Lattice& lattice, PinSet pin) {
   ClothModel model;
-  model.lattice = scene.fine_lattice();
-  const Lattice& lattice = model.lattice;
+  model.lattice = lattice;
+  model.material = material;
   const double dx = lattice.spacing_x_m, dy = lattice.spacing_y_m;
-  const double density = scene.flag.areal_density_kg_m2;
+  const double density = material.areal_density_kg_m2;
 
   model.mass_kg.resize(lattice.node_count());
   for (int j = 0; j < lattice.rows; ++j) {
@@ -52,18 +52,21 @@ ClothModel make_cloth_model(const Scene& scene) {
       model.mass_kg[lattice.index(j, k)] = density * dx * dy * row_share * col_share;
     }
   }
-  model.pinned = pinned_nodes(lattice, scene.flag.pin);
+  model.pinned = pinned_nodes(lattice, pin);
 
-  const double stretch = scene.flag.stretch_modulus_n_m;
-  const double shear = scene.flag.shear_modulus_n_m;
+  const double stretch = material.stretch_modulus_n_m;
+  const double shear = material.shear_modulus_n_m;
   const double diagonal = std::hypot(dx, dy);
   const double k_diagonal = shear * diagonal * diagonal / (2.0 * dx * dy);
   model.links[0] = {0, 1, dx, stretch * dy / dx, 0.5};
   model.links[1] = {1, 0, dy, stretch * dx / dy, 0.5};
   model.links[2] = {1, 1, diagonal, k_diagonal, 1.0};
   model.links[3] = {1, -1, diagonal, k_diagonal, 1.0};
-  model.damping_per_s = scene.flag.damping_per_s;
   return model;
+}
+
+ClothModel make_cloth_model(const Scene& scene) {
+  return make_cloth_model(material_of(scene), scene.fine_lattice(), scene.flag.pin);
 }
 
 }  // namespace flagsim::physics

@@ -13,8 +13,8 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
                                                          TermSelection selection) {
   std::vector<std::unique_ptr<ForceTerm>> terms;
   if (selection.stretch) terms.push_back(std::make_unique<StretchSprings>(model));
-  if (scene.bending && selection.bending)
-    terms.push_back(std::make_unique<BendingSprings>(model, scene.bending->rigidity_j));
+  if (model.material.bending_rigidity_j && selection.bending)
+    terms.push_back(std::make_unique<BendingSprings>(model, *model.material.bending_rigidity_j));
   if (scene.gravity && selection.gravity)
     terms.push_back(
         std::make_unique<GravityForce>(model.mass_kg, scene.gravity->acceleration_m_s2));
@@ -27,7 +27,7 @@ std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
     Wind wind = *scene.wind;
     if (wind.model == AirModel::kVortex) wind.lift = 0.0;
     terms.push_back(std::make_unique<AeroForce>(model, wind, scene.seed,
-                                                scene.flag.areal_density_kg_m2, cloth_speed));
+                                                model.material.areal_density_kg_m2, cloth_speed));
   }
   return terms;
 }
@@ -42,12 +42,12 @@ std::vector<int> register_term_stages(const std::vector<std::unique_ptr<ForceTer
 
 std::vector<std::string> physics_effects(const Scene& scene, const ClothModel& model) {
   std::vector<std::string> effects = {"stretch"};
-  if (scene.bending) effects.emplace_back("bending");
+  if (model.material.bending_rigidity_j) effects.emplace_back("bending");
   if (scene.gravity) effects.emplace_back("gravity");
   if (scene.wind) effects.emplace_back("wind");
   if (scene.wind && scene.wind->gusts) effects.emplace_back("gusts");
   if (scene.wind && scene.wind->turbulence) effects.emplace_back("turbulence");
-  if (model.damping_per_s > 0.0) effects.emplace_back("damping");
+  if (model.material.damping_per_s > 0.0) effects.emplace_back("damping");
   if (scene.pole) effects.emplace_back("pole");
   return effects;
 }

@@ -32,20 +32,20 @@ struct ImplicitEuler::Direct {
 
 ImplicitEuler::~ImplicitEuler() = default;
 
-ImplicitEuler::ImplicitEuler(const Scene& scene)
-    : model_(make_cloth_model(scene)),
+ImplicitEuler::ImplicitEuler(const Scene& scene, std::shared_ptr<const ClothModel> model)
+    : model_(std::move(model)),
       pins_(scene.pole),
-      obstacles_(Obstacles::of(scene, model_.lattice)),
-      rest_m_(model_.lattice.rest_positions()),
-      terms_(make_force_terms(scene, model_, pins_)),
-      effects_(physics_effects(scene, model_)),
-      state_(initial_state(scene, model_)),
+      obstacles_(Obstacles::of(scene, model_->lattice)),
+      rest_m_(model_->lattice.rest_positions()),
+      terms_(make_force_terms(scene, *model_, pins_)),
+      effects_(physics_effects(scene, *model_)),
+      state_(initial_state(scene, *model_)),
       newton_iterations_(scene.solver.iterations.value_or(1)),
       max_step_strain_change_(scene.solver.max_step_strain_change),
       substeps_(scene.solver.substeps),
       frame_s_(1.0 / scene.fps),
-      explicit_limit_s_(explicit_stability_limit(model_, terms_)) {
-  const std::size_t n = model_.lattice.node_count();
+      explicit_limit_s_(explicit_stability_limit(*model_, terms_)) {
+  const std::size_t n = model_->lattice.node_count();
   for (auto* v : {&x0_, &v0_, &forces_, &residual_, &delta_, &r_, &z_, &p_, &ap_, &scratch_})
     v->assign(n, Vec3::Zero());
   block_inverse_.assign(n, Mat3::Zero());
@@ -94,9 +94,9 @@ void ImplicitEuler::advance(double dt_s, int halvings, StageTimes* times) {
 double ImplicitEuler::largest_strain_change() const {
   // The row and column links: the strain the run reports (/stats/max_strain).
   double largest = 0.0;
-  for (const LinkFamily& family : {model_.links[0], model_.links[1]}) {
+  for (const LinkFamily& family : {model_->links[0], model_->links[1]}) {
     const double inverse_rest = 1.0 / family.rest_length_m;
-    for_each_link(model_, family, [&](std::size_t a, std::size_t b, double, double) {
+    for_each_link(*model_, family, [&](std::size_t a, std::size_t b, double, double) {
       const double before = (x0_[b] - x0_[a]).norm();
       const double after = (state_.x_m[b] - state_.x_m[a]).norm();
       largest = std::max(largest, std::abs(after - before) * inverse_rest);
@@ -106,9 +106,9 @@ double ImplicitEuler::largest_strain_change() const {
 }
 
 void ImplicitEuler::apply(double dt_s, const std::vector<Vec3>& dv, std::vector<Vec3>& out) {
-  const double mass_scale = model_.damping_mass_scale(dt_s);
+  const double mass_scale = model_->damping_mass_scale(dt_s);
   const std::size_t n = dv.size();
-  for (std::size_t i = 0; i < n; ++i) out[i] = (mass_scale * model_.mass_kg[i]) * dv[i];
+  for (std::size_t i = 0; i < n; ++i) out[i] = (mass_scale * model_->mass_kg[i]) * dv[i];
   // h C dv + h^2 K dv, accumulated as h (C dv + h K dv).
   std::vector<Vec3>& scratch = scratch_;
   std::fill(scratch.begin(), scratch.end(), Vec3::Zero());
@@ -116,7 +116,7 @@ void ImplicitEuler::apply(double dt_s, const std::vector<Vec3>& dv, std::vector<
   for (std::size_t i = 0; i < n; ++i) scratch[i] *= dt_s;
   for (const auto& term : terms_) term->add_damping_product(dv, scratch);
   for (std::size_t i = 0; i < n; ++i)
-    out[i] = model_.pinned[i] ? Vec3::Zero() : Vec3(out[i] + dt_s * scratch[i]);
+    out[i] = model_->pinned[i] ? Vec3::Zero() : Vec3(out[i] + dt_s * scratch[i]);
 }
 
 bool ImplicitEuler::solve(double dt_s, const std::vector<Vec3>& rhs, std::vector<Vec3>& dv) {
@@ -170,7 +170,7 @@ void ImplicitEuler::assemble(double dt_s) {
   // the one node of that colour within 2 rows and 2 columns of r: the reach of
   // every term (bending triples span 2 links, links and triangles 1).
   Direct& d = *direct_state_;
-  const Lattice& lattice = model_.lattice;
+  const Lattice& lattice = model_->lattice;
   const int rows = lattice.rows, cols = lattice.cols;
   const std::size_t n = lattice.node_count();
   std::vector<Eigen::Triplet<double>> triplets;
@@ -182,7 +182,7 @@ void ImplicitEuler::assemble(double dt_s) {
         std::fill(p_.begin(), p_.end(), Vec3::Zero());
         for (int j = cj; j < rows; j += 5)
           for (int k = ck; k < cols; k += 5)
-            if (!model_.pinned[lattice.index(j, k)]) p_[lattice.index(j, k)][c] = 1.0;
+            if (!model_->pinned[lattice.index(j, k)]) p_[lattice.index(j, k)][c] = 1.0;
         apply(dt_s, p_, ap_);
         for (int jr = 0; jr < rows; ++jr) {
           const int j = jr - ((jr - cj) % 5 + 5) % 5 + (((jr - cj) % 5 + 5) % 5 > 2 ? 5 : 0);
@@ -191,7 +191,7 @@ void ImplicitEuler::assemble(double dt_s) {
             const int k = kr - ((kr - ck) % 5 + 5) % 5 + (((kr - ck) % 5 + 5) % 5 > 2 ? 5 : 0);
             if (k < 0 || k >= cols) continue;
             const std::size_t row = lattice.index(jr, kr), col = lattice.index(j, k);
-            if (model_.pinned[row] || model_.pinned[col]) continue;
+            if (model_->pinned[row] || model_->pinned[col]) continue;
             for (int r = 0; r < 3; ++r) {
               const int at_row = int(3 * row) + r, at_col = int(3 * col) + c;
               if (at_row < at_col) continue;  // the lower triangle: LDL^T reads only it
@@ -208,7 +208,7 @@ void ImplicitEuler::assemble(double dt_s) {
   }
   if (!d.analysed) {
     for (std::size_t i = 0; i < n; ++i)
-      if (model_.pinned[i])
+      if (model_->pinned[i])
         for (int r = 0; r < 3; ++r) triplets.emplace_back(int(3 * i) + r, int(3 * i) + r, 1.0);
     d.matrix.resize(int(3 * n), int(3 * n));
     d.matrix.setFromTriplets(triplets.begin(), triplets.end());
@@ -225,7 +225,7 @@ void ImplicitEuler::assemble(double dt_s) {
     d.rhs.resize(int(3 * n));
   } else {
     for (std::size_t i = 0; i < n; ++i)
-      if (model_.pinned[i])
+      if (model_->pinned[i])
         for (int r = 0; r < 3; ++r) d.matrix.coeffRef(int(3 * i) + r, int(3 * i) + r) = 1.0;
   }
 }
@@ -245,7 +245,7 @@ bool ImplicitEuler::solve_direct(double dt_s, const std::vector<Vec3>& rhs, std:
   for (std::size_t i = 0; i < rhs.size(); ++i) d.rhs.segment<3>(int(3 * i)) = rhs[i];
   d.solution = d.ldlt.solve(d.rhs);
   for (std::size_t i = 0; i < rhs.size(); ++i)
-    dv[i] = model_.pinned[i] ? Vec3::Zero() : Vec3(d.solution.segment<3>(int(3 * i)));
+    dv[i] = model_->pinned[i] ? Vec3::Zero() : Vec3(d.solution.segment<3>(int(3 * i)));
   return true;
 }
 
@@ -254,12 +254,12 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
   const double next_time = state_.time_s + h;
   const Vec3 pin_offset = pins_.offset_m(next_time);
   const std::size_t n = state_.x_m.size();
-  const double mass_scale = model_.damping_mass_scale(h);
+  const double mass_scale = model_->damping_mass_scale(h);
   x0_ = state_.x_m;
   v0_ = state_.v_m_s;
   std::vector<Vec3>& v = state_.v_m_s;
   for (std::size_t i = 0; i < n; ++i)
-    if (model_.pinned[i]) v[i] = (rest_m_[i] + pin_offset - x0_[i]) / h;
+    if (model_->pinned[i]) v[i] = (rest_m_[i] + pin_offset - x0_[i]) / h;
   for (int iteration = 0; iteration < newton_iterations_; ++iteration) {
     // The point the forces are linearized at: the start x0 in the first
     // iteration (Baraff and Witkin's step: x0 + h v0 can be far from any
@@ -282,9 +282,9 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
         for (const auto& term : terms_) term->add_stiffness_product(ap_, scratch_);
       }
       for (std::size_t i = 0; i < n; ++i)
-        residual_[i] = model_.pinned[i] ? Vec3::Zero()
-                                        : Vec3(h * (forces_[i] - scratch_[i]) -
-                                               model_.mass_kg[i] * (mass_scale * v[i] - v0_[i]));
+        residual_[i] = model_->pinned[i] ? Vec3::Zero()
+                                         : Vec3(h * (forces_[i] - scratch_[i]) -
+                                                model_->mass_kg[i] * (mass_scale * v[i] - v0_[i]));
       if (!direct_) {  // the CG's preconditioner: A's diagonal blocks, inverted
         std::fill(stiffness_diagonal_.begin(), stiffness_diagonal_.end(), Mat3::Zero());
         std::fill(damping_diagonal_.begin(), damping_diagonal_.end(), Mat3::Zero());
@@ -293,9 +293,9 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
           term->add_damping_diagonal(damping_diagonal_);
         }
         for (std::size_t i = 0; i < n; ++i) {
-          const Mat3 block = mass_scale * model_.mass_kg[i] * Mat3::Identity() +
+          const Mat3 block = mass_scale * model_->mass_kg[i] * Mat3::Identity() +
                              h * damping_diagonal_[i] + h * h * stiffness_diagonal_[i];
-          block_inverse_[i] = model_.pinned[i] ? Mat3::Zero() : Mat3(block.inverse());
+          block_inverse_[i] = model_->pinned[i] ? Mat3::Zero() : Mat3(block.inverse());
         }
       }
     });
@@ -308,14 +308,14 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
   }
   const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
   for (std::size_t i = 0; i < n; ++i) {
-    if (model_.pinned[i]) {
+    if (model_->pinned[i]) {
       state_.x_m[i] = rest_m_[i] + pin_offset;
       v[i] = pin_velocity;
     } else {
       state_.x_m[i] = x0_[i] + h * v[i];
     }
   }
-  if (obstacles_) obstacles_->project(next_time, state_.x_m, v, model_.pinned);
+  if (obstacles_) obstacles_->project(next_time, state_.x_m, v, model_->pinned);
   state_.time_s = next_time;
 }
 

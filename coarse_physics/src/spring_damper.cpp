@@ -8,28 +8,28 @@
 
 namespace flagsim::physics {
 
-SpringDamperSolver::SpringDamperSolver(const Scene& scene)
-    : model_(make_cloth_model(scene)),
+SpringDamperSolver::SpringDamperSolver(const Scene& scene, std::shared_ptr<const ClothModel> model)
+    : model_(std::move(model)),
       pins_(scene.pole),
-      obstacles_(Obstacles::of(scene, model_.lattice)),
-      initial_(physics::initial_state(scene, model_)) {
-  rest_m_ = model_.lattice.rest_positions();
-  inverse_mass_.resize(model_.mass_kg.size());
+      obstacles_(Obstacles::of(scene, model_->lattice)),
+      initial_(physics::initial_state(scene, *model_)) {
+  rest_m_ = model_->lattice.rest_positions();
+  inverse_mass_.resize(model_->mass_kg.size());
   for (std::size_t i = 0; i < inverse_mass_.size(); ++i)
-    inverse_mass_[i] = model_.pinned[i] ? 0.0 : 1.0 / model_.mass_kg[i];
-  forces_n_.assign(model_.lattice.node_count(), Vec3::Zero());
+    inverse_mass_[i] = model_->pinned[i] ? 0.0 : 1.0 / model_->mass_kg[i];
+  forces_n_.assign(model_->lattice.node_count(), Vec3::Zero());
 
   // The pipeline of force terms: only what the scene calls for is constructed.
-  terms_ = make_force_terms(scene, model_, pins_);
-  effects_ = physics_effects(scene, model_);
+  terms_ = make_force_terms(scene, *model_, pins_);
+  effects_ = physics_effects(scene, *model_);
 
   if (scene.wind && scene.wind->model == AirModel::kVortex) {
-    vortex_ = std::make_unique<VortexWake>(model_, *scene.wind, scene.seed, inverse_mass_);
+    vortex_ = std::make_unique<VortexWake>(*model_, *scene.wind, scene.seed, inverse_mass_);
     effects_.insert(std::find(effects_.begin(), effects_.end(), "wind") + 1, "vortex");
   }
 
   frame_s_ = 1.0 / scene.fps;
-  stable_substep_s_ = explicit_stability_limit(model_, terms_);
+  stable_substep_s_ = explicit_stability_limit(*model_, terms_);
   if (vortex_)
     stable_substep_s_ = std::min(stable_substep_s_, 1.0 / vortex_->velocity_rate_bound());
   substeps_per_frame_ =
@@ -64,17 +64,17 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
       for (std::size_t i = 0; i < forces_n_.size(); ++i) forces_n_[i] *= inverse_mass_[i];
       vortex_->add_air_inertia(forces_n_);
       for (std::size_t i = 0; i < forces_n_.size(); ++i)
-        if (!model_.pinned[i]) forces_n_[i] *= model_.mass_kg[i];
+        if (!model_->pinned[i]) forces_n_[i] *= model_->mass_kg[i];
     });
   }
   auto update = [&] {
     const double next_time = state.time_s + dt_s;
     const Vec3 pin_offset = pins_.offset_m(next_time);
     const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
-    const double damping = model_.velocity_damping(dt_s);
+    const double damping = model_->velocity_damping(dt_s);
     const std::size_t n = state.x_m.size();
     for (std::size_t i = 0; i < n; ++i) {
-      if (model_.pinned[i]) {
+      if (model_->pinned[i]) {
         state.x_m[i] = rest_m_[i] + pin_offset;
         state.v_m_s[i] = pin_velocity;
       } else {
@@ -88,7 +88,7 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
       state.x_m[node] = where_(i, next_time);
       state.v_m_s[node] = (state.x_m[node] - before) / dt_s;
     }
-    if (obstacles_) obstacles_->project(next_time, state.x_m, state.v_m_s, model_.pinned);
+    if (obstacles_) obstacles_->project(next_time, state.x_m, state.v_m_s, model_->pinned);
     state.time_s = next_time;
   };
   run_timed(times, update_stage_, update);
@@ -100,7 +100,7 @@ void SpringDamperSolver::drive(std::vector<std::size_t> nodes, Driver where) {
 }
 
 double SpringDamperSolver::kinetic_energy(const ClothState& state) const {
-  return kinetic_energy_j(model_.mass_kg, state.v_m_s);
+  return kinetic_energy_j(model_->mass_kg, state.v_m_s);
 }
 
 double SpringDamperSolver::potential_energy(const ClothState& state) const {

@@ -23,34 +23,35 @@ double xpbd_propagation_substep_s(const ClothModel& model, double stretch_modulu
   return double(iterations) * spacing / wave_speed;
 }
 
-Xpbd::Xpbd(const Scene& scene)
-    : model_(make_cloth_model(scene)),
+Xpbd::Xpbd(const Scene& scene, std::shared_ptr<const ClothModel> model)
+    : model_(std::move(model)),
       pins_(scene.pole),
-      obstacles_(Obstacles::of(scene, model_.lattice)),
-      rest_m_(model_.lattice.rest_positions()),
+      obstacles_(Obstacles::of(scene, model_->lattice)),
+      rest_m_(model_->lattice.rest_positions()),
       // Stretch and bending are constraints below; the rest are forces.
-      terms_(make_force_terms(scene, model_, pins_, {.stretch = false, .bending = false})),
-      effects_(physics_effects(scene, model_)),
-      state_(initial_state(scene, model_)),
+      terms_(make_force_terms(scene, *model_, pins_, {.stretch = false, .bending = false})),
+      effects_(physics_effects(scene, *model_)),
+      state_(initial_state(scene, *model_)),
       iterations_(scene.solver.iterations.value_or(1)),
       frame_s_(1.0 / scene.fps),
-      stable_substep_s_(explicit_stability_limit(model_, terms_)) {
+      stable_substep_s_(explicit_stability_limit(*model_, terms_)) {
   substeps_ = physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
-  const double propagation = xpbd_propagation_substep_s(
-      model_, scene.flag.stretch_modulus_n_m, scene.flag.areal_density_kg_m2, iterations_);
+  const double propagation =
+      xpbd_propagation_substep_s(*model_, model_->material.stretch_modulus_n_m,
+                                 model_->material.areal_density_kg_m2, iterations_);
   substeps_ = std::max(substeps_, int(std::ceil(frame_s_ / propagation - 1e-9)));
-  const std::size_t n = model_.lattice.node_count();
+  const std::size_t n = model_->lattice.node_count();
   inverse_mass_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
-    inverse_mass_[i] = model_.pinned[i] ? 0.0 : 1.0 / model_.mass_kg[i];
+    inverse_mass_[i] = model_->pinned[i] ? 0.0 : 1.0 / model_->mass_kg[i];
   forces_.assign(n, Vec3::Zero());
 
   // Links, two colours per family: row links alternate along the row (by k),
   // the others by row (j); no two links of one colour share a node.
-  const int cols = model_.lattice.cols;
-  for (const LinkFamily& family : model_.links) {
+  const int cols = model_->lattice.cols;
+  for (const LinkFamily& family : model_->links) {
     std::vector<Link> groups[2];
-    for_each_link(model_, family, [&](std::size_t a, std::size_t b, double k, double rest) {
+    for_each_link(*model_, family, [&](std::size_t a, std::size_t b, double k, double rest) {
       if (inverse_mass_[a] + inverse_mass_[b] == 0.0 || k <= 0.0) return;  // two pins
       const int along = family.row_step == 0 ? int(a % cols) : int(a / cols);
       groups[along % 2].push_back({std::uint32_t(a), std::uint32_t(b), rest, 1.0 / k});
@@ -59,9 +60,9 @@ Xpbd::Xpbd(const Scene& scene)
       if (!group.empty()) link_groups_.push_back(std::move(group));
   }
   // Bending triples, three colours per direction, by the centre's place along the fiber.
-  if (scene.bending) {
+  if (const std::optional<double> rigidity = model_->material.bending_rigidity_j) {
     std::vector<Triple> groups[2][3];
-    for (const BendingTriple& t : bending_triples(model_.lattice, scene.bending->rigidity_j)) {
+    for (const BendingTriple& t : bending_triples(model_->lattice, *rigidity)) {
       const bool row = t.c - t.b == 1;
       const int along = row ? int(t.b % cols) : int(t.b / cols);
       groups[row ? 0 : 1][along % 3].push_back({t.a, t.b, t.c, 1.0 / t.k_n_m});
@@ -110,10 +111,10 @@ void Xpbd::step(double dt_s, StageTimes* times) {
   }
   const Vec3 pin_offset = pins_.offset_m(next_time);
   run_timed(times, update_stage_, [&] {
-    const double damping = model_.velocity_damping(h);
+    const double damping = model_->velocity_damping(h);
     predicted_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      if (model_.pinned[i]) {
+      if (model_->pinned[i]) {
         predicted_[i] = rest_m_[i] + pin_offset;
       } else {
         state_.v_m_s[i] = (state_.v_m_s[i] + (h * inverse_mass_[i]) * forces_[i]) * damping;
@@ -127,10 +128,10 @@ void Xpbd::step(double dt_s, StageTimes* times) {
     const double inverse_h = 1.0 / h;
     for (std::size_t i = 0; i < n; ++i) {
       state_.v_m_s[i] =
-          model_.pinned[i] ? pin_velocity : Vec3((predicted_[i] - state_.x_m[i]) * inverse_h);
+          model_->pinned[i] ? pin_velocity : Vec3((predicted_[i] - state_.x_m[i]) * inverse_h);
       state_.x_m[i] = predicted_[i];
     }
-    if (obstacles_) obstacles_->project(next_time, state_.x_m, state_.v_m_s, model_.pinned);
+    if (obstacles_) obstacles_->project(next_time, state_.x_m, state_.v_m_s, model_->pinned);
   });
   state_.time_s = next_time;
 }

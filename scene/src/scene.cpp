@@ -8,6 +8,7 @@
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/limits.hpp"
+#include "flagsim/scene/material.hpp"
 
 namespace flagsim {
 
@@ -157,6 +158,21 @@ void check_scene(const Scene& scene) {
   if (scene.simulated_frames() > limits::kFrames)
     fail("scene.duration", fmt::format("{} frames: more than the {} allowed",
                                        scene.simulated_frames(), limits::kFrames));
+  // The yarn's keys, where stated: [bending]'s, then [wrinkles]'.
+  const auto yarn = [&](const char* radius_key, const std::optional<double>& radius_m,
+                        const char* modulus_key, const std::optional<double>& modulus_pa) {
+    if (radius_m) positive(radius_key, *radius_m, "m");
+    if (modulus_pa) positive(modulus_key, *modulus_pa, "Pa");
+  };
+  if (scene.bending) {
+    non_negative("bending.stiffness", scene.bending->rigidity_j, "N m");
+    yarn("bending.fiber_radius", scene.bending->fiber_radius_m, "bending.fiber_modulus",
+         scene.bending->fiber_modulus_pa);
+  }
+  if (scene.wrinkles)
+    yarn("wrinkles.fiber_radius", scene.wrinkles->fiber_radius_m, "wrinkles.fiber_modulus",
+         scene.wrinkles->fiber_modulus_pa);
+  (void)material_of(scene);  // one material: [bending] and [wrinkles] agree on the yarn
 }
 
 }  // namespace flagsim

@@ -57,9 +57,19 @@ constexpr KeyMeaning kMeanings[] = {
     {"wind.gusts.period", "gusts: period of the swing"},
     {"wind.turbulence.intensity", "turbulence: along-wind std over the mean speed"},
     {"wind.turbulence.length_scale", "turbulence: integral length scale (von Karman spectrum)"},
-    {"bending.stiffness", "bending rigidity of the cloth in the physics; without [bending]: none"},
-    {"wrinkles.fiber_radius", "r of the paper's eqs. (1)-(10); without [wrinkles]: no step 3.5"},
-    {"wrinkles.fiber_modulus", "E of the paper's eqs. (1)-(10)"},
+    {"bending.stiffness",
+     "bending rigidity D of the cloth in the physics (absent: 1e-4, or pi E r^3 / 8 from the "
+     "yarn); without [bending]: none"},
+    {"bending.fiber_radius",
+     "r of the cloth's yarn (the paper's eqs. (1)-(10)), also [wrinkles]' yarn; with "
+     "`stiffness`, E = 8 D / (pi r^3)"},
+    {"bending.fiber_modulus",
+     "E of the cloth's yarn, instead of `stiffness`: D = pi E r^3 / 8 (yarns side by side)"},
+    {"wrinkles.fiber_radius",
+     "r of the paper's eqs. (1)-(10) (absent: [bending]'s yarn, else 1 mm); without "
+     "[wrinkles]: no step 3.5"},
+    {"wrinkles.fiber_modulus",
+     "E of the paper's eqs. (1)-(10) (absent: [bending]'s yarn, else 1 GPa)"},
     {"wrinkles.k_prime", "k' of eq. (13) per unit length, N/m (absent: 1)"},
     {"wrinkles.tolerance",
      "step 3.5 leaves a fiber alone when |E - e| / max(E, e) is below this (absent: 0, every "

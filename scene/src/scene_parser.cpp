@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/limits.hpp"
 #include "flagsim/core/message.hpp"
+#include "flagsim/scene/material.hpp"
 #include "scene_checks.hpp"
 #include "toml_reader.hpp"
 
@@ -62,6 +64,8 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "wind.gusts",
                                          "wind.turbulence",
                                          "bending.stiffness",
+                                         "bending.fiber_radius",
+                                         "bending.fiber_modulus",
                                          "wrinkles.fiber_radius",
                                          "wrinkles.fiber_modulus",
                                          "wrinkles.k_prime",
@@ -310,7 +314,26 @@ void read_effect_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("bending")) {
     TableReader in(*t, "bending", root.where_of("bending"));
     Bending bending;
-    bending.rigidity_j = in.real("stiffness", bending.rigidity_j, Bound::between(0.0, 1.0), "N m");
+    const std::optional<double> stiffness =
+        in.optional_real("stiffness", Bound::between(0.0, 1.0), "N m");
+    bending.fiber_radius_m = in.optional_real("fiber_radius", Bound{0.0, 0.01, true}, "m");
+    bending.fiber_modulus_pa = in.optional_real("fiber_modulus", Bound{0.0, 1.0e12, true}, "Pa");
+    if (bending.fiber_modulus_pa && !bending.fiber_radius_m)
+      in.fail("fiber_modulus", "a yarn needs its radius too (bending.fiber_radius, m)");
+    if (bending.fiber_modulus_pa && stiffness)
+      in.fail("fiber_modulus",
+              "the yarn's modulus and `stiffness` both state the bending (D = pi E r^3 / 8); "
+              "state one of them");
+    bending.rigidity_j = stiffness.value_or(bending.rigidity_j);
+    if (bending.fiber_modulus_pa) {  // D of a sheet of these yarns (scene/material.hpp)
+      bending.rigidity_j =
+          Yarn{*bending.fiber_radius_m, *bending.fiber_modulus_pa}.sheet_rigidity_j();
+      if (!(bending.rigidity_j <= 1.0))
+        in.fail("fiber_modulus",
+                fmt::format("a sheet of these yarns has D = pi E r^3 / 8 = {:g} N m: expected at "
+                            "most 1 N m (a steel plate's); a thinner or softer yarn",
+                            bending.rigidity_j));
+    }
     scene.bending = bending;
     in.finish(kAllKeys);
   }
@@ -346,9 +369,15 @@ void read_infill_tables(TableReader& root, Scene& scene) {
   if (const toml::table* t = root.subtable("wrinkles")) {
     TableReader in(*t, "wrinkles", root.where_of("wrinkles"));
     Wrinkles w;
-    w.fiber_radius_m = in.real("fiber_radius", w.fiber_radius_m, Bound{0.0, 0.01, true}, "m");
-    w.fiber_modulus_pa =
-        in.real("fiber_modulus", w.fiber_modulus_pa, Bound{0.0, 1.0e12, true}, "Pa");
+    w.fiber_radius_m = in.optional_real("fiber_radius", Bound{0.0, 0.01, true}, "m");
+    w.fiber_modulus_pa = in.optional_real("fiber_modulus", Bound{0.0, 1.0e12, true}, "Pa");
+    // One material: the yarn of [bending] (or the one its stiffness needs) is
+    // the wrinkles' too; a key of [wrinkles] that says otherwise is refused here.
+    Scene with = scene;
+    with.wrinkles = w;
+    material_of(with, [&](std::string_view key, const std::string& message) {
+      in.fail(key.substr(key.find('.') + 1), message);
+    });
     w.k_prime = in.optional_real("k_prime", Bound::between(0.0, 1.0e6), "N/m");
     w.tolerance = in.optional_real("tolerance", Bound::non_negative(), "(relative)");
     if (auto rounds = in.optional_integer("rounds", 0, 1000)) w.rounds = int(*rounds);

@@ -27,10 +27,10 @@ std::vector<NamedNumber> stepping_numbers(const physics::ClothIntegrator& physic
           {"stable_substep_seconds", physics.stable_substep_s(), "s"}};
 }
 
-// The integrator the scene's mode runs (backend_of: a full-lattice mode names
-// its own, hybrid follows solver.backend).
-std::unique_ptr<physics::ClothIntegrator> integrator_for(const Scene& scene) {
-  return physics::make_integrator(with_resolved_backend(scene));
+// The integrator the model's mode runs (backend_of: a full-lattice mode names
+// its own, hybrid follows solver.backend), on the model's physics cloth.
+std::unique_ptr<physics::ClothIntegrator> integrator_for(const Model& model) {
+  return physics::make_integrator(with_resolved_backend(model.scene()), model.physics_cloth());
 }
 
 // What the summary line says of an integrator's stepping.
@@ -103,7 +103,8 @@ void set_wind_of(physics::ClothIntegrator& physics, const Vec3& velocity_m_s) {
 // The full-lattice modes (is_full_lattice): physics on every node.
 class FullLatticeSimulation final : public Simulation {
  public:
-  explicit FullLatticeSimulation(const Scene& scene) : physics_(integrator_for(scene)) {}
+  explicit FullLatticeSimulation(std::shared_ptr<const Model> model)
+      : model_(std::move(model)), physics_(integrator_for(*model_)) {}
   const Lattice& lattice() const override { return physics_->model().lattice; }
   std::vector<std::string> effects() const override { return physics_->effects(); }
   std::vector<NamedNumber> numbers() const override { return stepping_numbers(*physics_); }
@@ -127,16 +128,18 @@ class FullLatticeSimulation final : public Simulation {
   void set_wind(const Vec3& velocity_m_s) override { set_wind_of(*physics_, velocity_m_s); }
 
  private:
+  std::shared_ptr<const Model> model_;
   std::unique_ptr<physics::ClothIntegrator> physics_;
   int frame_ = 0;
 };
 
-// Step 3.5's constants from [wrinkles], or nullopt when the scene has none.
-std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
+// Step 3.5's constants from [wrinkles] and the material's yarn, or nullopt
+// when the scene has no [wrinkles].
+std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene, const Material& material) {
   if (!scene.wrinkles) return std::nullopt;
   const Wrinkles& w = *scene.wrinkles;
   infill::WrinkleParams params;
-  params.k_r4 = infill::bending_constant_k_r4(w.fiber_modulus_pa, w.fiber_radius_m);
+  params.k_r4 = infill::bending_constant_k_r4(material.yarn.modulus_pa, material.yarn.radius_m);
   params.k_prime = w.k_prime.value_or(params.k_prime);
   params.tolerance = w.tolerance.value_or(params.tolerance);
   return params;
@@ -149,16 +152,17 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene) {
 // mode, the energy of the lattice the file holds.
 class DenseInfill {
  public:
-  DenseInfill(const Scene& scene, int coarse_rows, int coarse_cols)
-      : DenseInfill(scene, physics::make_cloth_model(scene), coarse_rows, coarse_cols) {}
+  DenseInfill(const Model& compiled, int coarse_rows, int coarse_cols)
+      : DenseInfill(compiled.scene(), compiled.material(), compiled.dense_cloth(), coarse_rows,
+                    coarse_cols) {}
 
  private:
-  DenseInfill(const Scene& scene, const physics::ClothModel& model, int coarse_rows,
-              int coarse_cols)
+  DenseInfill(const Scene& scene, const Material& material, const physics::ClothModel& model,
+              int coarse_rows, int coarse_cols)
       : lattice_(model.lattice),
         solver_(infill::make_infill(
             lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
-            {infill_solver_of(scene), paper_relax_sweeps_of(scene), wrinkle_params(scene),
+            {infill_solver_of(scene), paper_relax_sweeps_of(scene), wrinkle_params(scene, material),
              scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
@@ -252,7 +256,8 @@ class DenseInfill {
 // lattice comes from the paper's infill (Figs. 9-10).
 class InfillSimulation final : public Simulation {
  public:
-  explicit InfillSimulation(const Scene& scene) : scene_(scene), dense_(scene, 2, 2) {
+  explicit InfillSimulation(std::shared_ptr<const Model> model)
+      : model_(std::move(model)), dense_(*model_, 2, 2) {
     dense_.hold_corners();  // the keyframes give them exactly
     fill(0.0, nullptr);     // frame 0: the corners of the first keyframe
     dense_.forget_velocities();
@@ -267,7 +272,7 @@ class InfillSimulation final : public Simulation {
   void register_stages(StageTimes& times) override { dense_.register_stages(times); }
   void advance_frame(StageTimes* times) override {
     ++frame_;
-    fill(frame_ / scene_.fps, times);
+    fill(frame_ / model_->scene().fps, times);
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
@@ -293,11 +298,11 @@ class InfillSimulation final : public Simulation {
 
  private:
   void fill(double time_s, StageTimes* times) {
-    const auto corners = infill::corners_at(scene_.keyframes, time_s);
+    const auto corners = infill::corners_at(model_->scene().keyframes, time_s);
     dense_.fill(corners, frame_, times);
   }
 
-  Scene scene_;  ///< a copy: the caller's Scene may go before the simulation does
+  std::shared_ptr<const Model> model_;  ///< shared: the caller's Scene may go first
   DenseInfill dense_;
   int frame_ = 0;
 };
@@ -307,13 +312,13 @@ class InfillSimulation final : public Simulation {
 class HybridSimulation final : public Simulation {
  public:
   /// @param replay  where the coarse nodes come from instead of the physics (make_replay)
-  explicit HybridSimulation(const Scene& scene, CoarseFrames replay = {})
-      : coarse_scene_(on_coarse_lattice(scene)),
-        physics_(integrator_for(coarse_scene_)),
+  explicit HybridSimulation(std::shared_ptr<const Model> model, CoarseFrames replay = {})
+      : model_(std::move(model)),
+        physics_(integrator_for(*model_)),
         replay_(std::move(replay)),
-        dense_(scene, (*scene.flag.coarse)[0], (*scene.flag.coarse)[1]),
-        paper_infill_(infill_solver_of(scene) == InfillSolverKind::kPaper) {
-    dense_.hold_pins(scene.flag.pin);
+        dense_(*model_, physics_->model().lattice.rows, physics_->model().lattice.cols),
+        paper_infill_(infill_solver_of(model_->scene()) == InfillSolverKind::kPaper) {
+    dense_.hold_pins(model_->scene().flag.pin);
     make_reachable();  // frame 0: the coarse nodes where the physics starts
     dense_.fill(reachable_, 0, nullptr);
     dense_.forget_velocities();
@@ -352,7 +357,7 @@ class HybridSimulation final : public Simulation {
   }
   std::string stepping_summary() const override {
     return fmt::format("{} on {} x {} coarse nodes", stepping_of(*physics_),
-                       coarse_scene_.flag.fine_rows, coarse_scene_.flag.fine_cols);
+                       physics_->model().lattice.rows, physics_->model().lattice.cols);
   }
   std::optional<std::string> physics_failure() const override { return physics_->failure(); }
   std::string physics_advice() const override { return physics_->divergence_advice(); }
@@ -382,8 +387,8 @@ class HybridSimulation final : public Simulation {
   static constexpr double kCoarseSlack = 0.01;
   static constexpr int kSlackPasses = 100;
 
-  Scene coarse_scene_;
-  std::unique_ptr<physics::ClothIntegrator> physics_;
+  std::shared_ptr<const Model> model_;
+  std::unique_ptr<physics::ClothIntegrator> physics_;  ///< on model_->physics_cloth()
   CoarseFrames replay_;  ///< empty: the physics moves the coarse nodes
   // Only the paper solver needs slack; with the coarse lattice equal to the
   // fine one there are no fibers to fill between coarse nodes either.
@@ -438,7 +443,7 @@ std::optional<Divergence> frame_divergence(const Simulation& simulation, const S
 }
 
 std::optional<std::string> wrinkle_resolution_note(const Scene& scene) {
-  const std::optional<infill::WrinkleParams> params = wrinkle_params(scene);
+  const std::optional<infill::WrinkleParams> params = wrinkle_params(scene, material_of(scene));
   if (!params || params->k_prime <= 0.0) return std::nullopt;
   // Eq. (13)'s balance for a row of chord c with slack dL = 0.01 c:
   // (m pi / c)^2 = k_prime dL / (2 k r^4), wavelength 2 c / m.
@@ -460,21 +465,25 @@ void Simulation::set_wind(const Vec3& /*velocity_m_s*/) {
   throw UserError("set_wind: infill mode has no wind (the corners follow the keyframes)");
 }
 
+std::unique_ptr<Simulation> make_simulation(std::shared_ptr<const Model> model) {
+  const Mode mode = model->scene().mode;
+  if (mode == Mode::kInfill) return std::make_unique<InfillSimulation>(std::move(model));
+  if (mode == Mode::kHybrid) return std::make_unique<HybridSimulation>(std::move(model));
+  return std::make_unique<FullLatticeSimulation>(std::move(model));
+}
+
 std::unique_ptr<Simulation> make_simulation(const Scene& scene) {
-  check_scene(scene);  // a Scene built in code is checked as a file's is
-  if (scene.mode == Mode::kInfill) return std::make_unique<InfillSimulation>(scene);
-  if (scene.mode == Mode::kHybrid) return std::make_unique<HybridSimulation>(scene);
-  return std::make_unique<FullLatticeSimulation>(scene);
+  return make_simulation(Model::compile(scene));  // a Scene built in code is checked as a file's is
 }
 
 std::unique_ptr<Simulation> make_replay(const Scene& scene, CoarseFrames coarse) {
-  check_scene(scene);
+  std::shared_ptr<const Model> model = Model::compile(scene);
   if (scene.mode != Mode::kHybrid)
     throw UserError(
         fmt::format("a coarse trajectory is replayed by the hybrid; this scene's mode "
                     "is {}",
                     to_string(scene.mode)));
-  return std::make_unique<HybridSimulation>(scene, std::move(coarse));
+  return std::make_unique<HybridSimulation>(std::move(model), std::move(coarse));
 }
 
 }  // namespace flagsim::sim

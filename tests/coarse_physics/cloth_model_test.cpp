@@ -67,14 +67,14 @@ TEST(ClothModel, KineticEnergyAndTheDampingEveryBackendApplies) {
   const std::vector<Vec3> v = {Vec3(2.0, 0.0, 0.0), Vec3(0.0, 1.0, -1.0)};
   EXPECT_EQ(kinetic_energy_j(mass, v), 0.5 * 0.5 * 4.0 + 0.5 * 2.0 * 2.0);
   ClothModel model;
-  model.damping_per_s = 0.1;
+  model.material.damping_per_s = 0.1;
   // v <- v / (1 + c dt): after 1 s in 1000 steps, exp(-c t) to first order in dt: off by
   // c^2 dt t / 2 = 5e-6 (relative).
   double v_left = 1.0;
   for (int i = 0; i < 1000; ++i) v_left *= model.velocity_damping(1e-3);
   EXPECT_NEAR(v_left, std::exp(-0.1), 6e-6 * std::exp(-0.1));
   EXPECT_DOUBLE_EQ(model.velocity_damping(0.02) * model.damping_mass_scale(0.02), 1.0);
-  model.damping_per_s = 0.0;
+  model.material.damping_per_s = 0.0;
   EXPECT_EQ(model.velocity_damping(0.02), 1.0);
 }
 

@@ -50,12 +50,17 @@ double bullet_link_stiffness(double fraction, int iterations);
 
 class BulletCloth final : public ClothIntegrator {
  public:
-  explicit BulletCloth(const Scene& scene);
+  /// Steps `model` (the cloth, compiled once: sim::Model) under the rest of `scene`
+  /// (its effects, pole, solver settings and start).
+  BulletCloth(const Scene& scene, std::shared_ptr<const ClothModel> model);
+  /// The cloth of the scene's fine lattice (make_cloth_model(scene)).
+  explicit BulletCloth(const Scene& scene)
+      : BulletCloth(scene, std::make_shared<const ClothModel>(make_cloth_model(scene))) {}
   ~BulletCloth() override;
   BulletCloth(const BulletCloth&) = delete;
   BulletCloth& operator=(const BulletCloth&) = delete;
 
-  const ClothModel& model() const override { return model_; }
+  const ClothModel& model() const override { return *model_; }
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
   /// Bullet's nodes are put where `state` says (positions, the previous
@@ -78,7 +83,7 @@ class BulletCloth final : public ClothIntegrator {
   void project_contacts(double time_s);
   std::vector<Vec3> contact_x_, contact_v_;  ///< scratch of project_contacts
 
-  ClothModel model_;
+  std::shared_ptr<const ClothModel> model_;  ///< never null
   PinMotion pins_;
   std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;

@@ -63,14 +63,21 @@ class ClothIntegrator {
   virtual bool set_wind_drift(const WindField::Drift& drift);
 };
 
-/// The integrator of `scene.solver.backend` for the scene's fine lattice.
+/// The integrator of `scene.solver.backend` stepping `model` (the cloth of
+/// any lattice: the hybrid's coarse one) under the rest of `scene`.
+std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene,
+                                                 std::shared_ptr<const ClothModel> model);
+/// The same for the scene's fine lattice.
 std::unique_ptr<ClothIntegrator> make_integrator(const Scene& scene);
 
 /// The spring-damper backend behind the ClothIntegrator interface.
 class SpringDamperIntegrator final : public ClothIntegrator {
  public:
+  SpringDamperIntegrator(const Scene& scene, std::shared_ptr<const ClothModel> model)
+      : solver_(scene, std::move(model)), state_(solver_.initial_state()) {}
   explicit SpringDamperIntegrator(const Scene& scene)
-      : solver_(scene), state_(solver_.initial_state()) {}
+      : SpringDamperIntegrator(scene, std::make_shared<const ClothModel>(make_cloth_model(scene))) {
+  }
   const ClothModel& model() const override { return solver_.model(); }
   const std::vector<std::string>& effects() const override { return solver_.effects(); }
   const ClothState& state() const override { return state_; }

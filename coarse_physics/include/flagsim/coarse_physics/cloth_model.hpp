@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "flagsim/core/lattice.hpp"
+#include "flagsim/scene/material.hpp"
 #include "flagsim/scene/scene.hpp"
 
 namespace flagsim::physics {
@@ -34,24 +35,28 @@ struct LinkFamily {
   double edge_factor = 1.0;  ///< k multiplier for links along the lattice border
 };
 
+/// The cloth of one lattice, compiled from its material: immutable once
+/// built, shared by whatever steps it (backends hold it by shared_ptr).
 struct ClothModel {
   Lattice lattice;
+  Material material;                 ///< what the numbers below are made from
   std::vector<double> mass_kg;       ///< [J*K]
   std::vector<std::uint8_t> pinned;  ///< [J*K], 1 = position prescribed
   std::array<LinkFamily, 4> links;   ///< row, column, two diagonals
-  double damping_per_s = 0.0;        ///< flag.damping c, 1/s
 
   /// Damping over a substep dt, implicit in time: v <- v / (1 + c dt). Every
   /// backend applies it: the explicit ones and XPBD as this factor, Bullet as
   /// its kDP = 1 - factor, implicit Euler as the mass scale 1 + c dt.
-  double damping_mass_scale(double dt_s) const { return 1.0 + damping_per_s * dt_s; }
+  double damping_mass_scale(double dt_s) const { return 1.0 + material.damping_per_s * dt_s; }
   double velocity_damping(double dt_s) const { return 1.0 / damping_mass_scale(dt_s); }
 };
 
 /// 1/2 sum m |v|^2, J: of a lattice's nodes, masses [n] kg and velocities [n] m/s.
 double kinetic_energy_j(std::span<const double> mass_kg, std::span<const Vec3> v_m_s);
 
-/// Builds the cloth of `scene` on its fine lattice.
+/// The cloth of `material` on `lattice` with the nodes of `pin` held.
+ClothModel make_cloth_model(const Material& material, const Lattice& lattice, PinSet pin);
+/// The cloth of `scene` on its fine lattice (material_of(scene)).
 ClothModel make_cloth_model(const Scene& scene);
 
 /// Node indices held by `pin` (contract: flag.pin).

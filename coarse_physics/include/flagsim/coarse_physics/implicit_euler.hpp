@@ -64,9 +64,14 @@ inline constexpr int kMaxHalvings = 5;
 
 class ImplicitEuler final : public ClothIntegrator {
  public:
-  explicit ImplicitEuler(const Scene& scene);
+  /// Steps `model` (the cloth, compiled once: sim::Model) under the rest of `scene`
+  /// (its effects, pole, solver settings and start).
+  ImplicitEuler(const Scene& scene, std::shared_ptr<const ClothModel> model);
+  /// The cloth of the scene's fine lattice (make_cloth_model(scene)).
+  explicit ImplicitEuler(const Scene& scene)
+      : ImplicitEuler(scene, std::make_shared<const ClothModel>(make_cloth_model(scene))) {}
   ~ImplicitEuler() override;
-  const ClothModel& model() const override { return model_; }
+  const ClothModel& model() const override { return *model_; }
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
   void set_state(const ClothState& state) override { state_ = state; }
@@ -108,7 +113,7 @@ class ImplicitEuler final : public ClothIntegrator {
   /// A's entries into the direct solver's matrix (pattern and ordering the first time).
   void assemble(double dt_s);
 
-  ClothModel model_;
+  std::shared_ptr<const ClothModel> model_;  ///< never null
   PinMotion pins_;
   std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;

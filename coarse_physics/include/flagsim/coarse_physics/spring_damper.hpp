@@ -31,12 +31,16 @@ namespace flagsim::physics {
 
 class SpringDamperSolver {
  public:
-  /// The cloth of the scene's fine lattice and the force terms its effects call for.
-  explicit SpringDamperSolver(const Scene& scene);
+  /// Steps `model` (the cloth, compiled once: sim::Model) under the rest of `scene`
+  /// (the force terms its effects call for, pole, solver settings and start).
+  SpringDamperSolver(const Scene& scene, std::shared_ptr<const ClothModel> model);
+  /// The cloth of the scene's fine lattice (make_cloth_model(scene)).
+  explicit SpringDamperSolver(const Scene& scene)
+      : SpringDamperSolver(scene, std::make_shared<const ClothModel>(make_cloth_model(scene))) {}
   SpringDamperSolver(const SpringDamperSolver&) = delete;
   SpringDamperSolver& operator=(const SpringDamperSolver&) = delete;
 
-  const ClothModel& model() const { return model_; }
+  const ClothModel& model() const { return *model_; }
   /// Effects in pipeline order ("stretch,gravity,wind,damping,pole").
   const std::vector<std::string>& effects() const { return effects_; }
 
@@ -73,7 +77,7 @@ class SpringDamperSolver {
   bool has_vortex() const { return vortex_ != nullptr; }
 
  private:
-  ClothModel model_;
+  std::shared_ptr<const ClothModel> model_;  ///< never null
   PinMotion pins_;
   std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   ClothState initial_;

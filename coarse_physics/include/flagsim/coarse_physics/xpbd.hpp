@@ -65,8 +65,13 @@ class Xpbd final : public ClothIntegrator {
     std::uint32_t a = 0, b = 0, c = 0;
     double compliance = 0.0;  ///< 1/k_b, m/N
   };
-  explicit Xpbd(const Scene& scene);
-  const ClothModel& model() const override { return model_; }
+  /// Steps `model` (the cloth, compiled once: sim::Model) under the rest of `scene`
+  /// (its effects, pole, solver settings and start).
+  Xpbd(const Scene& scene, std::shared_ptr<const ClothModel> model);
+  /// The cloth of the scene's fine lattice (make_cloth_model(scene)).
+  explicit Xpbd(const Scene& scene)
+      : Xpbd(scene, std::make_shared<const ClothModel>(make_cloth_model(scene))) {}
+  const ClothModel& model() const override { return *model_; }
   const std::vector<std::string>& effects() const override { return effects_; }
   const ClothState& state() const override { return state_; }
   void set_state(const ClothState& state) override { state_ = state; }
@@ -92,7 +97,7 @@ class Xpbd final : public ClothIntegrator {
   /// side with the same bits as one at a time); alpha = compliance * inverse_h2.
   void project_links(std::size_t g, double inverse_h2);
 
-  ClothModel model_;
+  std::shared_ptr<const ClothModel> model_;  ///< never null
   PinMotion pins_;
   std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;

@@ -133,16 +133,25 @@ inline int air_panel_nodes(double length_m, double panel_m) {
   return 1 + std::max(1, int(std::ceil(length_m / panel_m - 1e-9)));
 }
 
-/// [bending]: bending rigidity of the cloth in the coarse physics.
+/// [bending]: bending rigidity of the cloth in the coarse physics, stated as
+/// D (`stiffness`) or as the paper's yarn (`fiber_radius`, `fiber_modulus`:
+/// D = pi E r^3 / 8, see scene/material.hpp); the yarn also makes [wrinkles].
 struct Bending {
-  /// D, N m = J (moment per unit width per unit curvature); the key is "stiffness"
+  /// D, N m = J (moment per unit width per unit curvature); the key is "stiffness".
+  /// The parser sets it from the yarn when the scene states that instead.
   double rigidity_j = 1.0e-4;
+  /// r, m: the yarn's radius, when stated here (with `stiffness`, E follows from D)
+  std::optional<double> fiber_radius_m;
+  /// E, Pa: the yarn's modulus, when stated here (with fiber_radius, instead of `stiffness`)
+  std::optional<double> fiber_modulus_pa;
 };
 
-/// [wrinkles]: the paper's step 3.5 (eqs. (1)-(13)).
+/// [wrinkles]: the paper's step 3.5 (eqs. (1)-(13)). Its yarn (r, E) is the
+/// cloth's material: stated here or in [bending], not in both (material_of
+/// resolves it; neither: kDefaultYarn).
 struct Wrinkles {
-  double fiber_radius_m = 1.0e-3;
-  double fiber_modulus_pa = 1.0e9;
+  std::optional<double> fiber_radius_m;
+  std::optional<double> fiber_modulus_pa;
   std::optional<double> k_prime;
   std::optional<double> tolerance;
   std::optional<int> rounds;

@@ -18,6 +18,7 @@
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/scene/scene.hpp"
 #include "flagsim/sim/divergence.hpp"
+#include "flagsim/sim/model.hpp"
 
 namespace flagsim::sim {
 
@@ -97,7 +98,9 @@ std::optional<std::string> wrinkle_resolution_note(const Scene& scene);
 std::optional<Divergence> frame_divergence(const Simulation& simulation, const Scene& scene,
                                            const StrainStats& strain);
 
-/// The simulation of the scene's mode, at its frame 0.
+/// The simulation of the model's mode, at its frame 0. Any number may share one model.
+std::unique_ptr<Simulation> make_simulation(std::shared_ptr<const Model> model);
+/// The same for `scene`, compiled (Model::compile: checked as a file's is).
 std::unique_ptr<Simulation> make_simulation(const Scene& scene);
 
 /// Writes the coarse nodes [Jc*Kc] m the infill takes at simulated frame n
