@@ -60,12 +60,11 @@ struct BulletCloth::World {
 
 BulletCloth::BulletCloth(const Scene& scene, std::shared_ptr<const ClothModel> model)
     : model_(std::move(model)),
-      pins_(scene.pole),
       obstacles_(Obstacles::of(scene, model_->lattice)),
       world_(std::make_unique<World>()) {
   rest_m_ = model_->lattice.rest_positions();
   const std::size_t n = rest_m_.size();
-  terms_ = make_force_terms(scene, *model_, pins_, {.stretch = false, .gravity = false});
+  terms_ = make_force_terms(scene, *model_, {.stretch = false, .gravity = false});
   effects_ = physics_effects(scene, *model_);
   forces_n_.assign(n, Vec3::Zero());
 
@@ -167,8 +166,8 @@ void BulletCloth::before_substep(double dt_s) {
   const double t = world_->time_s;
   // Pins: at their place now, moving so that Bullet's prediction lands them
   // exactly where they must be after the substep.
-  const Vec3 here = pins_.offset_m(t);
-  const Vec3 velocity = (pins_.offset_m(t + dt_s) - here) / dt_s;
+  const Vec3 here = model_->pin_motion.offset_m(t);
+  const Vec3 velocity = (model_->pin_motion.offset_m(t + dt_s) - here) / dt_s;
   const std::size_t n = rest_m_.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (!model_->pinned[i]) continue;
@@ -234,7 +233,7 @@ void BulletCloth::project_contacts(double time_s) {
 
 void BulletCloth::read_back() {
   const btSoftBody& body = *world_->body;
-  const Vec3 pin_velocity = pins_.velocity_m_s(state_.time_s);
+  const Vec3 pin_velocity = model_->pin_motion.velocity_m_s(state_.time_s);
   for (std::size_t i = 0; i < rest_m_.size(); ++i) {
     state_.x_m[i] = from_bt(body.m_nodes[int(i)].m_x);
     // Bullet's velocity of a pin is its last displacement, damped by kDP; the

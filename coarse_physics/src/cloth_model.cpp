@@ -37,8 +37,10 @@ double kinetic_energy_j(std::span<const double> mass_kg, std::span<const Vec3> v
   return total;
 }
 
-ClothModel make_cloth_model(const Material& material, const Lattice& lattice, PinSet pin) {
+ClothModel make_cloth_model(const Material& material, const Lattice& lattice, PinSet pin,
+                            const std::optional<PoleMotion>& pole) {
   ClothModel model;
+  model.pin_motion = PinMotion(pole);
   model.lattice = lattice;
   model.material = material;
   const double dx = lattice.spacing_x_m, dy = lattice.spacing_y_m;
@@ -66,7 +68,7 @@ ClothModel make_cloth_model(const Material& material, const Lattice& lattice, Pi
 }
 
 ClothModel make_cloth_model(const Scene& scene) {
-  return make_cloth_model(material_of(scene), scene.fine_lattice(), scene.flag.pin);
+  return make_cloth_model(material_of(scene), scene.fine_lattice(), scene.flag.pin, scene.pole);
 }
 
 }  // namespace flagsim::physics

@@ -34,10 +34,9 @@ ImplicitEuler::~ImplicitEuler() = default;
 
 ImplicitEuler::ImplicitEuler(const Scene& scene, std::shared_ptr<const ClothModel> model)
     : model_(std::move(model)),
-      pins_(scene.pole),
       obstacles_(Obstacles::of(scene, model_->lattice)),
       rest_m_(model_->lattice.rest_positions()),
-      terms_(make_force_terms(scene, *model_, pins_)),
+      terms_(make_force_terms(scene, *model_)),
       effects_(physics_effects(scene, *model_)),
       state_(initial_state(scene, *model_)),
       newton_iterations_(scene.solver.iterations.value_or(1)),
@@ -156,11 +155,14 @@ bool ImplicitEuler::solve(double dt_s, const std::vector<Vec3>& rhs, std::vector
   cg_max_ = std::max(cg_max_, iteration);
   cg_total_ += iteration;
   if (!converged)
-    failure_ = fmt::format(
-        "implicit Euler: the linear solve did not converge at t = {:.4g} s in a step of {:.3g} s "
-        "(relative residual {:.2g} after {} conjugate-gradient iterations, tolerance {:.0e}): "
-        "raise solver.substeps (now {}) for shorter steps, which it solves in fewer iterations",
-        state_.time_s, dt_s, relative, iteration, kCgTolerance, substeps_);
+    failure_ = SolverNote{.kind = SolverNote::Kind::kCgNotConverged,
+                          .substeps = substeps_,
+                          .iterations = newton_iterations_,
+                          .cg_iterations = iteration,
+                          .time_s = state_.time_s,
+                          .step_s = dt_s,
+                          .residual = relative,
+                          .tolerance = kCgTolerance};
   return converged;
 }
 
@@ -235,11 +237,11 @@ bool ImplicitEuler::solve_direct(double dt_s, const std::vector<Vec3>& rhs, std:
   assemble(dt_s);
   d.ldlt.factorize(d.matrix);
   if (d.ldlt.info() != Eigen::Success) {
-    failure_ = fmt::format(
-        "implicit Euler: the sparse Cholesky factorisation failed at t = {:.4g} s (the system "
-        "is not positive definite: a non-finite state?); use solver.linear = \"cg\" or raise "
-        "solver.substeps (now {})",
-        state_.time_s, substeps_);
+    failure_ = SolverNote{.kind = SolverNote::Kind::kCholeskyFailed,
+                          .substeps = substeps_,
+                          .iterations = newton_iterations_,
+                          .time_s = state_.time_s,
+                          .step_s = dt_s};
     return false;
   }
   for (std::size_t i = 0; i < rhs.size(); ++i) d.rhs.segment<3>(int(3 * i)) = rhs[i];
@@ -252,7 +254,7 @@ bool ImplicitEuler::solve_direct(double dt_s, const std::vector<Vec3>& rhs, std:
 void ImplicitEuler::step(double dt_s, StageTimes* times) {
   const double h = dt_s;
   const double next_time = state_.time_s + h;
-  const Vec3 pin_offset = pins_.offset_m(next_time);
+  const Vec3 pin_offset = model_->pin_motion.offset_m(next_time);
   const std::size_t n = state_.x_m.size();
   const double mass_scale = model_->damping_mass_scale(h);
   x0_ = state_.x_m;
@@ -306,7 +308,7 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
     if (!converged) break;
     for (std::size_t i = 0; i < n; ++i) v[i] += delta_[i];
   }
-  const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
+  const Vec3 pin_velocity = model_->pin_motion.velocity_m_s(next_time);
   for (std::size_t i = 0; i < n; ++i) {
     if (model_->pinned[i]) {
       state_.x_m[i] = rest_m_[i] + pin_offset;
@@ -319,11 +321,10 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
   state_.time_s = next_time;
 }
 
-std::string ImplicitEuler::divergence_advice() const {
-  return fmt::format(
-      "implicit Euler linearizes each step once per Newton iteration: raise solver.substeps "
-      "(now {}) or solver.iterations (now {})",
-      substeps_, newton_iterations_);
+std::optional<SolverNote> ImplicitEuler::divergence_advice() const {
+  return SolverNote{.kind = SolverNote::Kind::kImplicitLinearization,
+                    .substeps = substeps_,
+                    .iterations = newton_iterations_};
 }
 
 std::string ImplicitEuler::solver_summary() const {

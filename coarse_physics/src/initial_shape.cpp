@@ -54,7 +54,7 @@ ClothState initial_state(const Scene& scene, const ClothModel& model) {
     for (std::size_t i = 0; i < n; ++i)
       if (!model.pinned[i]) state.x_m[i].z() += z[i];
   }
-  const Vec3 pin_velocity = PinMotion(scene.pole).velocity_m_s(0.0);
+  const Vec3 pin_velocity = model.pin_motion.velocity_m_s(0.0);
   for (std::size_t i = 0; i < n; ++i)
     if (model.pinned[i]) state.v_m_s[i] = pin_velocity;
   return state;

@@ -10,7 +10,6 @@ namespace flagsim::physics {
 
 SpringDamperSolver::SpringDamperSolver(const Scene& scene, std::shared_ptr<const ClothModel> model)
     : model_(std::move(model)),
-      pins_(scene.pole),
       obstacles_(Obstacles::of(scene, model_->lattice)),
       initial_(physics::initial_state(scene, *model_)) {
   rest_m_ = model_->lattice.rest_positions();
@@ -20,7 +19,7 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene, std::shared_ptr<const
   forces_n_.assign(model_->lattice.node_count(), Vec3::Zero());
 
   // The pipeline of force terms: only what the scene calls for is constructed.
-  terms_ = make_force_terms(scene, *model_, pins_);
+  terms_ = make_force_terms(scene, *model_);
   effects_ = physics_effects(scene, *model_);
 
   if (scene.wind && scene.wind->model == AirModel::kVortex) {
@@ -69,8 +68,8 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
   }
   auto update = [&] {
     const double next_time = state.time_s + dt_s;
-    const Vec3 pin_offset = pins_.offset_m(next_time);
-    const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
+    const Vec3 pin_offset = model_->pin_motion.offset_m(next_time);
+    const Vec3 pin_velocity = model_->pin_motion.velocity_m_s(next_time);
     const double damping = model_->velocity_damping(dt_s);
     const std::size_t n = state.x_m.size();
     for (std::size_t i = 0; i < n; ++i) {

@@ -25,11 +25,10 @@ double xpbd_propagation_substep_s(const ClothModel& model, double stretch_modulu
 
 Xpbd::Xpbd(const Scene& scene, std::shared_ptr<const ClothModel> model)
     : model_(std::move(model)),
-      pins_(scene.pole),
       obstacles_(Obstacles::of(scene, model_->lattice)),
       rest_m_(model_->lattice.rest_positions()),
       // Stretch and bending are constraints below; the rest are forces.
-      terms_(make_force_terms(scene, *model_, pins_, {.stretch = false, .bending = false})),
+      terms_(make_force_terms(scene, *model_, {.stretch = false, .bending = false})),
       effects_(physics_effects(scene, *model_)),
       state_(initial_state(scene, *model_)),
       iterations_(scene.solver.iterations.value_or(1)),
@@ -109,7 +108,7 @@ void Xpbd::step(double dt_s, StageTimes* times) {
     const int stage = term_stage_.empty() ? -1 : term_stage_[t];
     run_timed(times, stage, [&] { terms_[t]->add_forces(state_.x_m, state_.v_m_s, forces_); });
   }
-  const Vec3 pin_offset = pins_.offset_m(next_time);
+  const Vec3 pin_offset = model_->pin_motion.offset_m(next_time);
   run_timed(times, update_stage_, [&] {
     const double damping = model_->velocity_damping(h);
     predicted_.resize(n);
@@ -124,7 +123,7 @@ void Xpbd::step(double dt_s, StageTimes* times) {
   });
   run_timed(times, project_stage_, [&] { project(h); });
   run_timed(times, update_stage_, [&] {
-    const Vec3 pin_velocity = pins_.velocity_m_s(next_time);
+    const Vec3 pin_velocity = model_->pin_motion.velocity_m_s(next_time);
     const double inverse_h = 1.0 / h;
     for (std::size_t i = 0; i < n; ++i) {
       state_.v_m_s[i] =
@@ -277,11 +276,9 @@ void Xpbd::project(double dt_s) {
   }
 }
 
-std::string Xpbd::divergence_advice() const {
-  return fmt::format(
-      "XPBD's links stretch more the longer its substep: raise solver.substeps (now {} a "
-      "frame) or solver.iterations (now {})",
-      substeps_, iterations_);
+std::optional<SolverNote> Xpbd::divergence_advice() const {
+  return SolverNote{
+      .kind = SolverNote::Kind::kXpbdSubstep, .substeps = substeps_, .iterations = iterations_};
 }
 
 std::string Xpbd::solver_summary() const {

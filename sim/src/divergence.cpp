@@ -25,16 +25,46 @@ std::optional<Divergence> find_divergence(std::span<const Vec3> positions_m,
   return std::nullopt;
 }
 
+std::string describe(const physics::SolverNote& note) {
+  using Kind = physics::SolverNote::Kind;
+  switch (note.kind) {
+    case Kind::kCgNotConverged:
+      return fmt::format(
+          "implicit Euler: the linear solve did not converge at t = {:.4g} s in a step of {:.3g} s "
+          "(relative residual {:.2g} after {} conjugate-gradient iterations, tolerance {:.0e}): "
+          "raise solver.substeps (now {}) for shorter steps, which it solves in fewer iterations",
+          note.time_s, note.step_s, note.residual, note.cg_iterations, note.tolerance,
+          note.substeps);
+    case Kind::kCholeskyFailed:
+      return fmt::format(
+          "implicit Euler: the sparse Cholesky factorisation failed at t = {:.4g} s (the system "
+          "is not positive definite: a non-finite state?); use solver.linear = \"cg\" or raise "
+          "solver.substeps (now {})",
+          note.time_s, note.substeps);
+    case Kind::kXpbdSubstep:
+      return fmt::format(
+          "XPBD's links stretch more the longer its substep: raise solver.substeps (now {} a "
+          "frame) or solver.iterations (now {})",
+          note.substeps, note.iterations);
+    case Kind::kImplicitLinearization:
+      return fmt::format(
+          "implicit Euler linearizes each step once per Newton iteration: raise solver.substeps "
+          "(now {}) or solver.iterations (now {})",
+          note.substeps, note.iterations);
+  }
+  return {};
+}
+
 std::string describe(const Divergence& divergence, const Scene& scene) {
   using Cause = Divergence::Cause;
   // What the physics backend adds to the causes it can be behind.
   const auto with_advice = [&](std::string text) {
-    if (!divergence.detail.empty()) text += "; " + divergence.detail;
+    if (divergence.solver) text += "; " + describe(*divergence.solver);
     return text;
   };
   switch (divergence.cause) {
     case Cause::kPhysicsFailure:
-      return divergence.detail;
+      return divergence.solver ? describe(*divergence.solver) : std::string("the physics failed");
     case Cause::kPositionNotFinite:
       return with_advice("a node position became NaN or infinite");
     case Cause::kVelocityNotFinite:

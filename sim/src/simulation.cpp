@@ -117,8 +117,12 @@ class FullLatticeSimulation final : public Simulation {
   std::span<const Vec3> velocities() const override { return physics_->state().v_m_s; }
   double kinetic_energy_j() const override { return physics_->kinetic_energy(); }
   std::string stepping_summary() const override { return stepping_of(*physics_); }
-  std::optional<std::string> physics_failure() const override { return physics_->failure(); }
-  std::string physics_advice() const override { return physics_->divergence_advice(); }
+  std::optional<physics::SolverNote> physics_failure() const override {
+    return physics_->failure();
+  }
+  std::optional<physics::SolverNote> physics_advice() const override {
+    return physics_->divergence_advice();
+  }
   SimulationState state() const override { return physics_state(frame_, *physics_); }
   void set_state(const SimulationState& state) override {
     set_physics_state(*physics_, state);
@@ -359,8 +363,12 @@ class HybridSimulation final : public Simulation {
     return fmt::format("{} on {} x {} coarse nodes", stepping_of(*physics_),
                        physics_->model().lattice.rows, physics_->model().lattice.cols);
   }
-  std::optional<std::string> physics_failure() const override { return physics_->failure(); }
-  std::string physics_advice() const override { return physics_->divergence_advice(); }
+  std::optional<physics::SolverNote> physics_failure() const override {
+    return physics_->failure();
+  }
+  std::optional<physics::SolverNote> physics_advice() const override {
+    return physics_->divergence_advice();
+  }
   SimulationState state() const override {
     SimulationState state = physics_state(frame_, *physics_);
     dense_.save(state);
@@ -424,12 +432,12 @@ class HybridSimulation final : public Simulation {
 std::optional<Divergence> frame_divergence(const Simulation& simulation, const Scene& scene,
                                            const StrainStats& strain) {
   using Cause = Divergence::Cause;
-  if (std::optional<std::string> failed = simulation.physics_failure())
-    return Divergence{Cause::kPhysicsFailure, 0.0, 0.0, std::move(*failed)};
+  if (std::optional<physics::SolverNote> failed = simulation.physics_failure())
+    return Divergence{Cause::kPhysicsFailure, 0.0, 0.0, failed};
   std::optional<Divergence> found =
       find_divergence(simulation.positions(), simulation.velocities(), strain, scene.limits);
   if (!found) return found;
-  found->detail = simulation.physics_advice();
+  found->solver = simulation.physics_advice();
   if (scene.mode == Mode::kInfill && strain.max <= scene.limits.max_strain) {
     // No physics moves an infill-mode cloth: a node this fast follows the keyframes.
     double fastest = 0.0;

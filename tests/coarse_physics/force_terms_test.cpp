@@ -35,29 +35,25 @@ Scene everything() {
 TEST(ForceTerms, OnlyTheEffectsTheSceneCallsForInPipelineOrder) {
   const Scene bare = test::small_cloth();
   const ClothModel bare_model = make_cloth_model(bare);
-  const PinMotion still(bare.pole);
-  EXPECT_EQ(names(make_force_terms(bare, bare_model, still)), std::vector<std::string>{"stretch"});
+  EXPECT_EQ(names(make_force_terms(bare, bare_model)), std::vector<std::string>{"stretch"});
   const Scene full = everything();
   const ClothModel model = make_cloth_model(full);
-  const PinMotion pins(full.pole);
-  EXPECT_EQ(names(make_force_terms(full, model, pins)),
+  EXPECT_EQ(names(make_force_terms(full, model)),
             (std::vector<std::string>{"stretch", "bending", "gravity", "wind"}));
 }
 
 TEST(ForceTerms, ABackendLeavesOutWhatItModelsItself) {
   const Scene full = everything();
   const ClothModel model = make_cloth_model(full);
-  const PinMotion pins(full.pole);
   // Bullet: its links stretch and its world pulls down; wind stays ours.
-  EXPECT_EQ(names(make_force_terms(full, model, pins, {false, true, false})),
+  EXPECT_EQ(names(make_force_terms(full, model, {false, true, false})),
             (std::vector<std::string>{"bending", "wind"}));
 }
 
 TEST(ForceTerms, EachTermGetsATimingColumnNamedAfterIt) {
   const Scene full = everything();
   const ClothModel model = make_cloth_model(full);
-  const PinMotion pins(full.pole);
-  const auto terms = make_force_terms(full, model, pins);
+  const auto terms = make_force_terms(full, model);
   StageTimes times;
   const std::vector<int> stages = register_term_stages(terms, times);
   ASSERT_EQ(stages.size(), terms.size());

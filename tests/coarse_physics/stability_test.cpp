@@ -27,8 +27,7 @@ TEST(Stability, LimitIsTwoOverTheLargestFrequencyBound) {
   // Springs only: omega_max^2 = max over free nodes of (row sum of 2k per link) / m.
   const Scene scene = test::small_cloth(4, 5);
   const ClothModel model = make_cloth_model(scene);
-  const PinMotion pins(scene.pole);
-  const auto terms = make_force_terms(scene, model, pins);
+  const auto terms = make_force_terms(scene, model);
   std::vector<double> row_sum(model.lattice.node_count(), 0.0);
   for (const auto& term : terms) term->add_stiffness_bound(row_sum);
   double omega2 = 0.0;

@@ -57,12 +57,34 @@ TEST(Divergence, NamesEachCauseWithItsNumbersAndWordsThatSayWhatToChange) {
   found = find_divergence(x, v, {std::nan(""), 0.0}, limits);
   ASSERT_TRUE(found);
   EXPECT_EQ(found->cause, Cause::kStrain);
-  // What the physics backend adds follows its cause; its own failure is its words alone.
-  found->detail = "raise solver.substeps (now 7 a frame)";
-  EXPECT_NE(words(*found).find("intended; raise solver.substeps (now 7 a frame)"),
+  // What the physics backend adds follows its cause, worded from its numbers;
+  // its own failure is its words alone.
+  using Note = physics::SolverNote;
+  found->solver = Note{.kind = Note::Kind::kXpbdSubstep, .substeps = 7, .iterations = 1};
+  EXPECT_NE(
+      words(*found).find("intended; XPBD's links stretch more the longer its substep: "
+                         "raise solver.substeps (now 7 a frame) or solver.iterations (now 1)"),
+      std::string::npos);
+  found->solver = Note{.kind = Note::Kind::kImplicitLinearization, .substeps = 3, .iterations = 2};
+  EXPECT_NE(words(*found).find("implicit Euler linearizes each step once per Newton iteration: "
+                               "raise solver.substeps (now 3) or solver.iterations (now 2)"),
             std::string::npos);
-  EXPECT_EQ(words({Cause::kPhysicsFailure, 0.0, 0.0, "Newton did not converge"}),
-            "Newton did not converge");
+  EXPECT_EQ(words({Cause::kPhysicsFailure, 0.0, 0.0,
+                   Note{.kind = Note::Kind::kCgNotConverged,
+                        .substeps = 1,
+                        .cg_iterations = 400,
+                        .time_s = 2.0,
+                        .step_s = 0.03125,
+                        .residual = 0.012,
+                        .tolerance = 1e-6}}),
+            "implicit Euler: the linear solve did not converge at t = 2 s in a step of 0.0312 s "
+            "(relative residual 0.012 after 400 conjugate-gradient iterations, tolerance 1e-06): "
+            "raise solver.substeps (now 1) for shorter steps, which it solves in fewer iterations");
+  EXPECT_EQ(words({Cause::kPhysicsFailure, 0.0, 0.0,
+                   Note{.kind = Note::Kind::kCholeskyFailed, .substeps = 4, .time_s = 0.5}}),
+            "implicit Euler: the sparse Cholesky factorisation failed at t = 0.5 s (the system is "
+            "not positive definite: a non-finite state?); use solver.linear = \"cg\" or raise "
+            "solver.substeps (now 4)");
   // The infill's failure names the solver and its knob.
   EXPECT_NE(words({Cause::kInfillUnconverged, 0.2, 0.1, {}})
                 .find("the infill (smooth solver) did not reach its tolerance"),

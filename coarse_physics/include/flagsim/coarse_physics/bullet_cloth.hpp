@@ -84,8 +84,7 @@ class BulletCloth final : public ClothIntegrator {
   std::vector<Vec3> contact_x_, contact_v_;  ///< scratch of project_contacts
 
   std::shared_ptr<const ClothModel> model_;  ///< never null
-  PinMotion pins_;
-  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
+  std::optional<Obstacles> obstacles_;       ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;
   std::vector<std::unique_ptr<ForceTerm>> terms_;  // bending, wind: what Bullet does not model
   std::vector<std::string> effects_;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
+#include "flagsim/coarse_physics/solver_note.hpp"
 #include "flagsim/coarse_physics/spring_damper.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/scene/scene.hpp"
@@ -39,13 +40,13 @@ class ClothIntegrator {
   /// Advances by one output frame (1/fps).
   virtual void advance_frame(StageTimes* times) = 0;
   /// Why the last frame's stepping cannot be trusted though its state may
-  /// look sound (a linear solve that did not converge), with what to change;
-  /// nullopt when it can. The run ends such a frame as diverged.
-  virtual std::optional<std::string> failure() const { return std::nullopt; }
-  /// What a diverged run's reason adds for this backend: the setting that
-  /// buys it stability or accuracy ("raise solver.substeps (now 80)"); empty
-  /// where the generic advice is the whole story.
-  virtual std::string divergence_advice() const { return {}; }
+  /// look sound (a linear solve that did not converge); nullopt when it can.
+  /// The run ends such a frame as diverged.
+  virtual std::optional<SolverNote> failure() const { return std::nullopt; }
+  /// What a diverged run's reason adds for this backend (the setting that buys
+  /// it stability or accuracy, with its value now); nullopt where the generic
+  /// advice is the whole story.
+  virtual std::optional<SolverNote> divergence_advice() const { return std::nullopt; }
   /// What the summary line adds about the solver ("1 Newton iteration, 84 CG
   /// iterations a substep at most"); empty for nothing.
   virtual std::string solver_summary() const { return {}; }

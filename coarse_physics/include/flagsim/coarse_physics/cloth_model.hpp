@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/scene/material.hpp"
 #include "flagsim/scene/scene.hpp"
@@ -39,10 +40,11 @@ struct LinkFamily {
 /// built, shared by whatever steps it (backends hold it by shared_ptr).
 struct ClothModel {
   Lattice lattice;
-  Material material;                 ///< what the numbers below are made from
-  std::vector<double> mass_kg;       ///< [J*K]
-  std::vector<std::uint8_t> pinned;  ///< [J*K], 1 = position prescribed
-  std::array<LinkFamily, 4> links;   ///< row, column, two diagonals
+  Material material;                   ///< what the numbers below are made from
+  std::vector<double> mass_kg;         ///< [J*K]
+  std::vector<std::uint8_t> pinned;    ///< [J*K], 1 = position prescribed
+  PinMotion pin_motion{std::nullopt};  ///< how the pinned nodes move ([pole] motion)
+  std::array<LinkFamily, 4> links;     ///< row, column, two diagonals
 
   /// Damping over a substep dt, implicit in time: v <- v / (1 + c dt). Every
   /// backend applies it: the explicit ones and XPBD as this factor, Bullet as
@@ -54,8 +56,10 @@ struct ClothModel {
 /// 1/2 sum m |v|^2, J: of a lattice's nodes, masses [n] kg and velocities [n] m/s.
 double kinetic_energy_j(std::span<const double> mass_kg, std::span<const Vec3> v_m_s);
 
-/// The cloth of `material` on `lattice` with the nodes of `pin` held.
-ClothModel make_cloth_model(const Material& material, const Lattice& lattice, PinSet pin);
+/// The cloth of `material` on `lattice` with the nodes of `pin` held, moving as `pole` says
+/// (nullopt: at rest).
+ClothModel make_cloth_model(const Material& material, const Lattice& lattice, PinSet pin,
+                            const std::optional<PoleMotion>& pole);
 /// The cloth of `scene` on its fine lattice (material_of(scene)).
 ClothModel make_cloth_model(const Scene& scene);
 

@@ -25,7 +25,6 @@ struct TermSelection {
 /// Stretch, bending, gravity, wind, in that order, as far as selected and called for.
 std::vector<std::unique_ptr<ForceTerm>> make_force_terms(const Scene& scene,
                                                          const ClothModel& model,
-                                                         const PinMotion& pins,
                                                          TermSelection selection = {});
 
 /// One timing column per term, named after it, in pipeline order; returns their indices.

@@ -83,9 +83,9 @@ class ImplicitEuler final : public ClothIntegrator {
   double substep_s() const override { return frame_s_ / substeps_; }
   void register_stages(StageTimes& times) override;
   void advance_frame(StageTimes* times) override;
-  std::optional<std::string> failure() const override { return failure_; }
+  std::optional<SolverNote> failure() const override { return failure_; }
   std::string solver_summary() const override;
-  std::string divergence_advice() const override;
+  std::optional<SolverNote> divergence_advice() const override;
 
   /// CG iterations of the last frame: the most of any one solve, and in all.
   int cg_iterations_max() const { return cg_max_; }
@@ -114,8 +114,7 @@ class ImplicitEuler final : public ClothIntegrator {
   void assemble(double dt_s);
 
   std::shared_ptr<const ClothModel> model_;  ///< never null
-  PinMotion pins_;
-  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
+  std::optional<Obstacles> obstacles_;       ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<std::string> effects_;
@@ -134,7 +133,7 @@ class ImplicitEuler final : public ClothIntegrator {
   int matrix_stage_ = -1, solve_stage_ = -1;
   int cg_max_ = 0, cg_total_ = 0;
   long steps_taken_ = 0, steps_undone_ = 0;
-  std::optional<std::string> failure_;
+  std::optional<SolverNote> failure_;
   bool direct_ = false;  ///< solver.linear = "cholesky"
   struct Direct;         ///< the assembled matrix and its factorisation
   std::unique_ptr<Direct> direct_state_;

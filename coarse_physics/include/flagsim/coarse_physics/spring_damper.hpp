@@ -78,8 +78,7 @@ class SpringDamperSolver {
 
  private:
   std::shared_ptr<const ClothModel> model_;  ///< never null
-  PinMotion pins_;
-  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
+  std::optional<Obstacles> obstacles_;       ///< [pole] radius, [ground]: projected after each step
   ClothState initial_;
   std::vector<Vec3> rest_m_;
   std::vector<double> inverse_mass_;

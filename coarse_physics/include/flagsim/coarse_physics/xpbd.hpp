@@ -83,7 +83,7 @@ class Xpbd final : public ClothIntegrator {
   void register_stages(StageTimes& times) override;
   void advance_frame(StageTimes* times) override;
   std::string solver_summary() const override;
-  std::string divergence_advice() const override;
+  std::optional<SolverNote> divergence_advice() const override;
 
   /// The constraints in colour groups, in the order they are projected.
   const std::vector<std::vector<Link>>& link_groups() const { return link_groups_; }
@@ -98,8 +98,7 @@ class Xpbd final : public ClothIntegrator {
   void project_links(std::size_t g, double inverse_h2);
 
   std::shared_ptr<const ClothModel> model_;  ///< never null
-  PinMotion pins_;
-  std::optional<Obstacles> obstacles_;  ///< [pole] radius, [ground]: projected after each step
+  std::optional<Obstacles> obstacles_;       ///< [pole] radius, [ground]: projected after each step
   std::vector<Vec3> rest_m_;
   std::vector<double> inverse_mass_;               ///< [J*K] 0 on pinned nodes, 1/kg
   std::vector<std::unique_ptr<ForceTerm>> terms_;  ///< gravity, wind: explicit

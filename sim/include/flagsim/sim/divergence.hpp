@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 
+#include "flagsim/coarse_physics/solver_note.hpp"
 #include "flagsim/core/strain.hpp"
 #include "flagsim/scene/scene.hpp"
 
@@ -16,7 +17,7 @@ namespace flagsim {
 /// Why the state of a frame cannot be trusted.
 struct Divergence {
   enum class Cause {
-    kPhysicsFailure,     ///< the physics backend gave up (detail: its own account)
+    kPhysicsFailure,     ///< the physics backend gave up (solver: its account)
     kPositionNotFinite,  ///< a node position became NaN or infinite
     kVelocityNotFinite,  ///< a node velocity became NaN or infinite
     kStrain,             ///< value: the largest link strain, over limit (limits.max_strain)
@@ -28,8 +29,8 @@ struct Divergence {
   double value = 0.0;
   double limit = 0.0;
   /// kPhysicsFailure: the backend's account; otherwise what the physics backend
-  /// adds for the causes it can be behind (ClothIntegrator::divergence_advice), or empty.
-  std::string detail;
+  /// adds for the causes it can be behind (ClothIntegrator::divergence_advice), or nullopt.
+  std::optional<physics::SolverNote> solver;
 };
 
 /// Why the state of a frame cannot be trusted, or nullopt when it can: a
@@ -39,6 +40,9 @@ struct Divergence {
 std::optional<Divergence> find_divergence(std::span<const Vec3> positions_m,
                                           std::span<const Vec3> velocities_m_s,
                                           const StrainStats& strain, const Limits& limits);
+
+/// The words for a backend's note: what happened or helps, and what to change.
+std::string describe(const physics::SolverNote& note);
 
 /// The words for `divergence` of a run of `scene` (one clause, what happened
 /// and what to change), as `flag-sim run` prints them after "diverged at t = ...".

@@ -61,10 +61,10 @@ class Simulation {
   /// What the infill did in the last frame, in the modes that have one.
   virtual std::optional<infill::FillReport> infill_report() const { return std::nullopt; }
   /// Why the physics' last frame cannot be trusted (ClothIntegrator::failure), or nullopt.
-  virtual std::optional<std::string> physics_failure() const { return std::nullopt; }
+  virtual std::optional<physics::SolverNote> physics_failure() const { return std::nullopt; }
   /// What a diverged frame's reason adds for the physics backend
-  /// (ClothIntegrator::divergence_advice); empty for nothing.
-  virtual std::string physics_advice() const { return {}; }
+  /// (ClothIntegrator::divergence_advice); nullopt for nothing.
+  virtual std::optional<physics::SolverNote> physics_advice() const { return std::nullopt; }
   /// What the summary line says about the stepping ("1001 substeps/frame of 3.3e-05 s").
   virtual std::string stepping_summary() const = 0;
   /// The mean wind now, m/s; nullopt without [wind].
