@@ -14,7 +14,9 @@ int main(int argc, char** argv) {
   const std::vector<std::string> overrides = {"flag.fine=[17,25]"};
   const flagsim::Scene scene =
       flagsim::parse_scene(flagsim::default_scene_toml(), flagsim::kDefaultSceneName, overrides);
-  const auto simulation = flagsim::sim::make_simulation(scene);
+  // Compiled once (checked, the cloth built); any number of simulations can share it.
+  const auto model = flagsim::sim::Model::compile(scene);
+  const auto simulation = flagsim::sim::make_simulation(model);
   const flagsim::sim::FrameRunResult ran =
       flagsim::sim::run_frames(*simulation, scene, 1, frames + 1, {});
   if (ran.end != flagsim::sim::FrameRunEnd::kComplete) {
