@@ -39,11 +39,11 @@ namespace {
 
 // The wave x = s c, y = A sin(m pi s), s in [0, 1], sampled finely enough that
 // its polyline is its arc to well under the 0.5% relaxation tolerance. The
-// sines are tabulated once per wave (a reused buffer: no allocation per frame).
+// sines are tabulated once per wave, in the wave's own table.
 class Wave {
  public:
   Wave(double chord, int half_waves, int samples) : chord_(chord), samples_(samples) {
-    thread_local std::vector<double> table;
+    std::vector<double>& table = table_;
     table.resize(std::size_t(samples) + 1);
     // sin(k a) by the recurrence sin((k+1) a) = 2 cos(a) sin(k a) - sin((k-1) a):
     // a few hundred steps stay within 1e-13 of std::sin, at a fraction of its cost.
@@ -52,17 +52,16 @@ class Wave {
     table[1] = std::sin(step);
     for (int k = 2; k <= samples; ++k)
       table[std::size_t(k)] = twice_cos * table[std::size_t(k - 1)] - table[std::size_t(k - 2)];
-    sines_ = table.data();
   }
   int samples() const { return samples_; }
   Eigen::Vector2d at(int sample, double amplitude) const {
-    return {chord_ * sample / samples_, amplitude * sines_[sample]};
+    return {chord_ * sample / samples_, amplitude * table_[std::size_t(sample)]};
   }
   double length(double amplitude) const {
     const double dx2 = (chord_ / samples_) * (chord_ / samples_);
     double total = 0.0;
     for (int k = 1; k <= samples_; ++k) {
-      const double dy = amplitude * (sines_[k] - sines_[k - 1]);
+      const double dy = amplitude * (table_[std::size_t(k)] - table_[std::size_t(k - 1)]);
       total += std::sqrt(dx2 + dy * dy);  // not std::hypot: no overflow here, 5x faster
     }
     return total;
@@ -89,7 +88,7 @@ class Wave {
  private:
   double chord_;
   int samples_;
-  const double* sines_;
+  std::vector<double> table_;  ///< sin(k pi m / samples), k = 0 .. samples
 };
 
 }  // namespace

@@ -169,9 +169,9 @@ void InfillSolver::deform(std::span<const Vec3> coarse_target_m, std::span<Vec3>
         [&] { initial_move_cells(lattice_, grid_, positions_m, previous_); });  // 3.2
   timed(stages_.length, [&] {  // 3.3: rows, then columns
     for (const Fiber& row : cell_rows_)
-      length_search(row, positions_m, previous_, kLengthTolerance);
+      length_search(row, positions_m, previous_, kLengthTolerance, length_scratch_);
     for (const Fiber& col : cell_cols_)
-      length_search(col, positions_m, previous_, kLengthTolerance);
+      length_search(col, positions_m, previous_, kLengthTolerance, length_scratch_);
   });
   timed(stages_.relax, relax);
   if (!wrinkles_) return;  // no [wrinkles]: 3.5 is not scheduled at all

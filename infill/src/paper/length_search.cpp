@@ -10,6 +10,13 @@ namespace flagsim::infill {
 
 double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
                      std::span<const Vec3> previous_m, double tolerance) {
+  LengthSearchScratch scratch;
+  return length_search(fiber, positions_m, previous_m, tolerance, scratch);
+}
+
+double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
+                     std::span<const Vec3> previous_m, double tolerance,
+                     LengthSearchScratch& scratch) {
   const double rest = fiber.rest_length_m();
   double error = std::abs(fiber.length_m(positions_m) - rest);
   if (error <= tolerance * rest || fiber.segments < 2) return 0.0;
@@ -17,8 +24,8 @@ double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
   // and the fiber's length sum_i sqrt(A.A + 2t A.B + t^2 B.B): each trial t
   // costs one square root per segment and moves nothing.
   constexpr int kSteps = 10;
-  thread_local std::vector<Vec3> step;
-  thread_local std::vector<double> aa, ab, bb;
+  std::vector<Vec3>& step = scratch.step;
+  std::vector<double>&aa = scratch.aa, &ab = scratch.ab, &bb = scratch.bb;
   const std::size_t n = std::size_t(fiber.segments);
   step.assign(n + 1, Vec3::Zero());  // ends stay: their step is zero
   aa.resize(n);

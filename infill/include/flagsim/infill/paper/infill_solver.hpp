@@ -31,6 +31,7 @@
 #include "flagsim/infill/cell_grid.hpp"
 #include "flagsim/infill/fiber.hpp"
 #include "flagsim/infill/infill_method.hpp"
+#include "flagsim/infill/paper/length_search.hpp"
 #include "flagsim/infill/wrinkles.hpp"
 
 namespace flagsim::infill {
@@ -110,6 +111,7 @@ class InfillSolver final : public InfillMethod {
   std::vector<std::uint8_t> held_;  ///< coarse nodes and pinned ones
   std::vector<std::size_t> coarse_dense_;  ///< dense index of each coarse node
   std::vector<Vec3> previous_;             ///< the lattice before the current deformation step
+  LengthSearchScratch length_scratch_;     ///< step 3.3's working space
   std::vector<Vec3> coarse_start_, coarse_step_;
   /// Columns of the frame's StageTimes, one per step (-1: not timed).
   struct Stages {

@@ -4,6 +4,7 @@
 // lattice before this deformation step (the paper's motion vectors are
 // positions_m - previous_m at a fiber's end nodes).
 #include <span>
+#include <vector>
 
 #include "flagsim/core/vec3.hpp"
 #include "flagsim/infill/fiber.hpp"
@@ -17,5 +18,16 @@ namespace flagsim::infill {
 /// length; stop when it no longer does. Returns the fraction moved (0 to 1).
 double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
                      std::span<const Vec3> previous_m, double tolerance);
+
+/// Working space of length_search, kept by a caller that searches many fibers
+/// (no allocation per fiber); nothing in it carries from one call to the next.
+struct LengthSearchScratch {
+  std::vector<Vec3> step;
+  std::vector<double> aa, ab, bb;
+};
+/// The same, working in `scratch`.
+double length_search(const Fiber& fiber, std::span<Vec3> positions_m,
+                     std::span<const Vec3> previous_m, double tolerance,
+                     LengthSearchScratch& scratch);
 
 }  // namespace flagsim::infill
