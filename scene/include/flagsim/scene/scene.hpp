@@ -141,17 +141,17 @@ struct Bending {
   /// The parser sets it from the yarn when the scene states that instead.
   double rigidity_j = 1.0e-4;
   /// r, m: the yarn's radius, when stated here (with `stiffness`, E follows from D)
-  std::optional<double> fiber_radius_m;
+  std::optional<double> fiber_radius_m = std::nullopt;
   /// E, Pa: the yarn's modulus, when stated here (with fiber_radius, instead of `stiffness`)
-  std::optional<double> fiber_modulus_pa;
+  std::optional<double> fiber_modulus_pa = std::nullopt;
 };
 
 /// [wrinkles]: the paper's step 3.5 (eqs. (1)-(13)). Its yarn (r, E) is the
 /// cloth's material: stated here or in [bending], not in both (material_of
 /// resolves it; neither: kDefaultYarn).
 struct Wrinkles {
-  std::optional<double> fiber_radius_m;
-  std::optional<double> fiber_modulus_pa;
+  std::optional<double> fiber_radius_m = std::nullopt;
+  std::optional<double> fiber_modulus_pa = std::nullopt;
   std::optional<double> k_prime;
   std::optional<double> tolerance;
   std::optional<int> rounds;
