@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <tuple>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/limits.hpp"
