@@ -24,7 +24,11 @@
 //      physics made the coarse links around it; where those are compressed it
 //      keeps its rest length (a compressed membrane wrinkles, it does not
 //      shorten its fibers: the paper's property 1), and the length the
-//      surface lacks there becomes relief. No slack is invented.
+//      surface lacks there becomes relief. No slack is invented. The bands
+//      so come from the material's stretch through the physics it drives (a
+//      stiffer [flag] stretch: less coarse stretch, tighter bands; issue 30);
+//      kStretchCap is not a second stretch modulus but the paper's 1% bound
+//      on a yarn's extension (property 1), which no fabric setting moves.
 //  3.4 relaxation: whole-fiber Gauss-Newton projection (fiber_projection.hpp)
 //      until every link is within its band; only pinned nodes are held. Under
 //      cells of 16 links or more, on the coarsest level its correction is
