@@ -105,6 +105,8 @@ data::Checkpoint checkpoint_of(const sim::SimulationState& state, int written_fr
   checkpoint.parts = {{"physics_positions", flat(state.physics.x_m), "m"},
                       {"physics_velocities", flat(state.physics.v_m_s), "m/s"},
                       {"physics_time", {&state.physics.time_s, 1}, "s"}};
+  if (!state.physics.memory.empty())  // the creases' rest angles
+    checkpoint.parts.push_back({"physics_memory", state.physics.memory, "rad"});
   if (trajectory_frames == 0) {
     checkpoint.parts.push_back({"dense_positions", flat(state.dense_m), "m"});
     checkpoint.parts.push_back({"dense_velocities", flat(state.dense_v_m_s), "m/s"});
@@ -148,6 +150,10 @@ sim::SimulationState state_of(const data::Checkpoint& checkpoint, const std::str
   state.physics.x_m = vectors("physics_positions");
   state.physics.v_m_s = vectors("physics_velocities");
   state.physics.time_s = scalar("physics_time");
+  if (checkpoint.part("physics_memory")) {
+    const std::span<const double> memory = values("physics_memory", 1);
+    state.physics.memory.assign(memory.begin(), memory.end());
+  }
   if (checkpoint.trajectory_frames == 0) {  // else the coarse trajectory gives them (resume_state)
     state.dense_m = vectors("dense_positions");
     state.dense_v_m_s = vectors("dense_velocities");

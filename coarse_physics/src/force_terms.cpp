@@ -2,6 +2,7 @@
 
 #include "flagsim/coarse_physics/aero_force.hpp"
 #include "flagsim/coarse_physics/bending_springs.hpp"
+#include "flagsim/coarse_physics/creased_bending.hpp"
 #include "flagsim/coarse_physics/gravity_force.hpp"
 #include "flagsim/coarse_physics/stretch_springs.hpp"
 
@@ -46,10 +47,21 @@ constexpr Effect kEffects[] = {
      [](const Scene&, const ClothModel& model) {
        return model.material.bending_rigidity_j.has_value();
      },
-     [](const Scene&, const ClothModel& model) -> TermPtr {
-       return std::make_unique<BendingSprings>(model, *model.material.bending_rigidity_j);
+     [](const Scene& scene, const ClothModel& model) -> TermPtr {
+       const double rigidity = *model.material.bending_rigidity_j;
+       if (const std::optional<Creases>& creases = model.material.creases)
+         return std::make_unique<CreasedBending>(
+             model, rigidity, *creases, 1.0 / scene.fps,
+             initial_crease_memory(scene.flag.folds, model.lattice));
+       return std::make_unique<BendingSprings>(model, rigidity);
      },
      &TermSelection::bending},
+    // Part of the bending's term (creased_bending.hpp).
+    {"creases",
+     [](const Scene&, const ClothModel& model) {
+       return model.material.bending_rigidity_j && model.material.creases;
+     },
+     nullptr, nullptr},
     {"gravity", [](const Scene& scene, const ClothModel&) { return scene.gravity.has_value(); },
      [](const Scene& scene, const ClothModel& model) -> TermPtr {
        return std::make_unique<GravityForce>(model.mass_kg, scene.gravity->acceleration_m_s2);

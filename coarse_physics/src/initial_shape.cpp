@@ -5,6 +5,7 @@
 #include <random>
 
 #include "flagsim/coarse_physics/cloth_state.hpp"
+#include "flagsim/coarse_physics/creased_bending.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
 
 namespace flagsim::physics {
@@ -57,6 +58,9 @@ ClothState initial_state(const Scene& scene, const ClothModel& model) {
   const Vec3 pin_velocity = model.pin_motion.velocity_m_s(0.0);
   for (std::size_t i = 0; i < n; ++i)
     if (model.pinned[i]) state.v_m_s[i] = pin_velocity;
+  // The terms' memory: the creases' rest angles (the bending term's), from the folds.
+  if (model.material.bending_rigidity_j && model.material.creases)
+    state.memory = initial_crease_memory(scene.flag.folds, model.lattice);
   return state;
 }
 

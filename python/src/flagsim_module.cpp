@@ -171,6 +171,9 @@ py::dict PySimulation::state() const {
   if (!s.infill_memory.empty())
     out["infill_memory"] =
         py::array_t<double>(py::ssize_t(s.infill_memory.size()), s.infill_memory.data());
+  if (!s.physics.memory.empty())  // the creases' rest angles, rad
+    out["physics_memory"] =
+        py::array_t<double>(py::ssize_t(s.physics.memory.size()), s.physics.memory.data());
   if (s.wind) {  // the mean wind and how far it has carried the turbulence (set_wind)
     py::dict wind;
     wind["velocity"] = py::array_t<double>(3, s.wind->mean_m_s.data());
@@ -191,6 +194,20 @@ Vec3 wind_vector(const py::dict& wind, const char* key) {
   Vec3 v(array.data()[0], array.data()[1], array.data()[2]);
   if (!v.allFinite()) throw UserError(std::string("set_state: 'wind' '") + key + "' is not finite");
   return v;
+}
+
+// The entry `key` of a state dict as `size` numbers (a memory the scene's `what` keeps).
+std::vector<double> values_of(const py::dict& state, const char* key, std::size_t size,
+                              const char* what) {
+  if (!state.contains(key))
+    throw UserError(std::string("set_state: the state has no '") + key + "' (this scene has " +
+                    what + ")");
+  const auto values =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(state[key]);
+  if (!values || values.ndim() != 1 || std::size_t(values.size()) != size)
+    throw UserError(std::string("set_state: '") + key + "' must be an array of shape [" +
+                    std::to_string(size) + "]");
+  return {values.data(), values.data() + values.size()};
 }
 
 void PySimulation::set_state(const py::dict& state) {
@@ -219,16 +236,10 @@ void PySimulation::set_state(const py::dict& state) {
       s.physics = {nodes_of(state, "coarse_positions", coarse_rows, coarse_cols),
                    nodes_of(state, "coarse_velocities", coarse_rows, coarse_cols), time};
   }
-  if (!now.infill_memory.empty()) {
-    if (!state.contains("infill_memory"))
-      throw UserError("set_state: the state has no 'infill_memory' (this scene has wrinkles)");
-    const auto memory = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
-        state["infill_memory"]);
-    if (!memory || memory.ndim() != 1 || std::size_t(memory.size()) != now.infill_memory.size())
-      throw UserError("set_state: 'infill_memory' must be an array of shape [" +
-                      std::to_string(now.infill_memory.size()) + "]");
-    s.infill_memory.assign(memory.data(), memory.data() + memory.size());
-  }
+  if (!now.infill_memory.empty())
+    s.infill_memory = values_of(state, "infill_memory", now.infill_memory.size(), "wrinkles");
+  if (!now.physics.memory.empty())
+    s.physics.memory = values_of(state, "physics_memory", now.physics.memory.size(), "creases");
   if (state.contains("wind") && now.wind) {  // a state without one keeps the wind as it is
     const py::dict wind = state["wind"].cast<py::dict>();
     if (!wind.contains("since")) throw UserError("set_state: 'wind' has no 'since'");

@@ -20,6 +20,7 @@ Material material_of(const Scene& scene, const MaterialFail& fail) {
   material.shear_modulus_n_m = scene.flag.shear_modulus_n_m;
   material.damping_per_s = scene.flag.damping_per_s;
   material.yarn = kDefaultYarn;
+  material.creases = scene.creases;
   const std::optional<Wrinkles>& wrinkles = scene.wrinkles;
   if (!scene.bending) {  // no bending in the physics: the yarn is [wrinkles]' alone
     if (wrinkles)

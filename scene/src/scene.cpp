@@ -4,11 +4,13 @@
 
 #include <cassert>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/limits.hpp"
 #include "flagsim/scene/material.hpp"
+#include "scene_checks.hpp"
 
 namespace flagsim {
 
@@ -27,6 +29,9 @@ const char* to_string(Mode mode) {
 }
 const char* to_string(PinSet pin) {
   return name_in(kPinNames, pin).data();
+}
+const char* to_string(FoldAxis axis) {
+  return name_in(kFoldAxisNames, axis).data();
 }
 const char* to_string(InfillSolverKind kind) {
   return name_in(kInfillSolverNames, kind).data();
@@ -173,6 +178,22 @@ void check_scene(const Scene& scene) {
     yarn("wrinkles.fiber_radius", scene.wrinkles->fiber_radius_m, "wrinkles.fiber_modulus",
          scene.wrinkles->fiber_modulus_pa);
   (void)material_of(scene);  // one material: [bending] and [wrinkles] agree on the yarn
+  for (const Fold& fold : flag.folds) {
+    if (!(fold.at > 0.0 && fold.at < 1.0))
+      fail("flag.folds",
+           fmt::format("at = {}: a fold line lies inside the flag, 0 < at < 1", fold.at));
+    if (!(fold.angle_rad > 0.0 && fold.angle_rad <= std::numbers::pi))
+      fail("flag.folds", fmt::format("angle = {} rad: expected 0 < angle <= pi", fold.angle_rad));
+  }
+  if (scene.creases) {
+    const Creases& creases = *scene.creases;
+    if (!(creases.yield_angle_rad >= 0.0 && creases.yield_angle_rad <= std::numbers::pi))
+      fail("creases.yield_angle", fmt::format("{} rad: expected 0 to pi", creases.yield_angle_rad));
+    positive("creases.set_time", creases.set_time_s, "s");
+    positive("creases.relax_time", creases.relax_time_s, "s");
+    positive("creases.width", creases.width_m, "m");
+  }
+  if (const auto problem = detail::crease_problem(scene)) fail(problem->first, problem->second);
 }
 
 }  // namespace flagsim

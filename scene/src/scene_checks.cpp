@@ -33,6 +33,29 @@ std::string dividing_sizes(int fine) {
 
 }  // namespace
 
+std::optional<std::pair<const char*, std::string>> crease_problem(const Scene& scene) {
+  if (!scene.flag.folds.empty() && !scene.creases)
+    return std::pair{"flag.folds",
+                     std::string("fold lines are creases: they need [creases] (how a crease sets "
+                                 "and relaxes; an empty table takes the defaults)")};
+  if (!scene.creases) return std::nullopt;
+  if (scene.mode == Mode::kInfill)
+    return std::pair{"creases",
+                     std::string("infill mode has no creases yet: they are part of the physics "
+                                 "(scene.mode hybrid or a full-lattice mode)")};
+  if (!scene.bending)
+    return std::pair{"creases",
+                     std::string("a crease is a rest angle of the cloth's bending: add [bending] "
+                                 "(its stiffness is the crease's)")};
+  if (const std::optional<Backend> backend = backend_of(scene);
+      backend && *backend != Backend::kSpringDamper && *backend != Backend::kImplicit)
+    return std::pair{"creases",
+                     fmt::format("the {} backend has no creases yet; they run with spring-damper "
+                                 "(scene.mode hybrid or mass-spring) and implicit",
+                                 to_string(*backend))};
+  return std::nullopt;
+}
+
 void check_consistency(Scene& scene, const TableReader& root, const TableReader& scene_in,
                        const TableReader& flag_in, bool mode_from_command_line) {
   const FlagSpec& flag = scene.flag;
@@ -89,6 +112,7 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
         {scene.wind.has_value(), "wind"},
         {scene.pole.has_value() || scene.solid_pole.has_value(), "pole"},
         {scene.bending.has_value(), "bending"},
+        {scene.creases.has_value(), "creases"},
         {root.table().contains("gravity"), "gravity"},
         {root.table().contains("solver"), "solver"}};
     for (const auto& [present, table] : physics)
@@ -101,6 +125,8 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
       scene.pole.reset();
       scene.solid_pole.reset();
       scene.bending.reset();
+      scene.creases.reset();
+      scene.flag.folds.clear();
       scene.gravity.reset();
       scene.solver = Solver{};
     }
@@ -188,6 +214,7 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
               "wind.model = \"vortex\" needs a wind along the flag, from the pole to the fly "
               "end (a positive x component)");
   }
+  if (const auto problem = crease_problem(scene)) fail_at(root, problem->first, problem->second);
   if (!unused.empty())
     scene.notes.push_back(fmt::format("note: {} mode does not use {}: ignored",
                                       to_string(scene.mode), fmt::join(unused, ", ")));

@@ -31,6 +31,14 @@ constexpr KeyMeaning kMeanings[] = {
     {"flag.initial_perturbation",
      "seeded smooth out-of-plane shape at t = 0 (a flat flag in a wind along its plane never "
      "starts to flap without one)"},
+    {"flag.folds",
+     "fold lines present at t = 0, as if the flag had been stored folded: a list of "
+     "{ axis, at, angle } (needs [creases])"},
+    {"flag.folds.axis",
+     "row (the fold line runs along a row, bending the columns) or col (along a column, "
+     "bending the rows)"},
+    {"flag.folds.at", "where the fold line lies: a fraction of the height (row) or width (col)"},
+    {"flag.folds.angle", "the crease's rest angle (pi: folded flat on itself)"},
     {"pole.motion", "how the pinned nodes move: sine"},
     {"pole.axis", "direction of the pole's motion"},
     {"pole.amplitude", "amplitude of the pole's motion"},
@@ -57,6 +65,16 @@ constexpr KeyMeaning kMeanings[] = {
     {"wind.gusts.period", "gusts: period of the swing"},
     {"wind.turbulence.intensity", "turbulence: along-wind std over the mean speed"},
     {"wind.turbulence.length_scale", "turbulence: integral length scale (von Karman spectrum)"},
+    {"creases.yield_angle",
+     "a fold sharper than this sets into a crease (the cloth's rest angle there); one below "
+     "it leaves nothing"},
+    {"creases.set_time", "how fast a fold held past the yield sets (time constant)"},
+    {"creases.relax_time",
+     "how fast a crease relaxes while the cloth is held flatter than it and pulled hard (time "
+     "constant; slower under less tension, none without)"},
+    {"creases.width",
+     "width of a crease's hinge (the yarns bent past their yield): how much of the tension "
+     "across a crease works on it"},
     {"bending.stiffness",
      "bending rigidity D of the cloth in the physics (absent: 1e-4, or pi E r^3 / 8 from the "
      "yarn); without [bending]: none"},
@@ -129,6 +147,7 @@ bool table_present(const Scene& scene, const std::string& table) {
   if (table == "wind" || table.starts_with("wind.")) return scene.wind.has_value();
   if (table == "bending") return scene.bending.has_value();
   if (table == "wrinkles") return scene.wrinkles.has_value();
+  if (table == "creases") return scene.creases.has_value();
   if (table == "infill") return scene.infill.has_value();
   if (table == "keyframe") return !scene.keyframes.empty();
   if (table == "render") return scene.render.has_value();
@@ -156,8 +175,20 @@ std::string effective_scene_toml(const Scene& scene, std::span<const SceneKey> k
       "# The scene as flag-sim takes it: every key its run uses, \"default\" where the scene\n"
       "# leaves a key to its default (flag-sim help keys: what each key means).\n";
   std::string table;
+  // flag.folds' entries, gathered into one line of [flag]: folds = [{ ... }, ...].
+  std::string folds;
+  const auto end_folds = [&] {
+    if (!folds.empty()) out += fmt::format("folds = [{} }}]\n", folds);
+    folds.clear();
+  };
   for (const SceneKey& k : keys) {
     const auto [where, name] = split_key(k.key);
+    if (where == "flag.folds") {  // a new fold at each fold's first key, axis
+      folds += fmt::format("{}{} = {}", name == "axis" ? (folds.empty() ? "{ " : " }, { ") : ", ",
+                           name, k.value);
+      continue;
+    }
+    end_folds();
     if (!table_present(scene, where)) continue;
     if (!k.given && !default_printable(scene, k.key)) continue;
     // A new [[keyframe]] at each keyframe's first key; other tables once.
@@ -177,6 +208,7 @@ std::string effective_scene_toml(const Scene& scene, std::span<const SceneKey> k
     if (!k.given) note += note.empty() ? "default" : "; default";
     out += note.empty() ? line + "\n" : fmt::format("{:<34}# {}\n", line, note);
   }
+  end_folds();
   return out;
 }
 
@@ -186,7 +218,7 @@ std::string keys_reference() {
   // defaults), and an infill scene (the keyframe keys).
   const std::string every_table =
       "[scene]\nmode = \"hybrid\"\n[flag]\ncoarse = [9, 13]\n[pole]\n[ground]\n[gravity]\n[wind]\n"
-      "[wind.gusts]\n[wind.turbulence]\n[bending]\n[wrinkles]\n[infill]\n[render]\n";
+      "[wind.gusts]\n[wind.turbulence]\n[bending]\n[wrinkles]\n[creases]\n[infill]\n[render]\n";
   const std::string infill =
       "[scene]\nmode = \"infill\"\n[[keyframe]]\ntime = 0.0\n"
       "corners = [[0.0, 2.0, 0.0], [1.5, 2.0, 0.0], [0.0, 1.0, 0.0], [1.5, 1.0, 0.0]]\n";
@@ -208,7 +240,9 @@ std::string keys_reference() {
     const std::string key(m.key);
     const auto [where, name] = split_key(key);
     if (where != table) {
-      out += where == "keyframe" ? "\n[[keyframe]]\n" : fmt::format("\n[{}]\n", where);
+      out += where == "keyframe"     ? "\n[[keyframe]]\n"
+             : where == "flag.folds" ? "\n[flag] folds = [{ axis, at, angle }, ...], each:\n"
+                                     : fmt::format("\n[{}]\n", where);
       table = where;
     }
     const auto it = read.find(key);

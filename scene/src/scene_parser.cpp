@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "flagsim/core/errors.hpp"
@@ -18,6 +20,8 @@
 
 namespace flagsim {
 namespace {
+
+constexpr double kPi = std::numbers::pi;
 
 using detail::Bound;
 using detail::TableReader;
@@ -44,6 +48,10 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "flag.damping",
                                          "flag.pin",
                                          "flag.initial_perturbation",
+                                         "flag.folds",
+                                         "flag.folds.axis",
+                                         "flag.folds.at",
+                                         "flag.folds.angle",
                                          "pole.motion",
                                          "pole.axis",
                                          "pole.amplitude",
@@ -70,6 +78,10 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "wrinkles.k_prime",
                                          "wrinkles.tolerance",
                                          "wrinkles.rounds",
+                                         "creases.yield_angle",
+                                         "creases.set_time",
+                                         "creases.relax_time",
+                                         "creases.width",
                                          "infill.relax_iterations",
                                          "infill.solver",
                                          "solver.backend",
@@ -225,6 +237,30 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
   flag.pin = in.choice_of("pin", flag.pin, kPinNames);
   flag.initial_perturbation_m =
       in.real("initial_perturbation", flag.initial_perturbation_m, Bound::between(0.0, 10.0), "m");
+  if (const toml::node* folds = in.table().get("folds")) {
+    in.allow("folds");
+    const toml::array* list = folds->as_array();
+    if (!list || (!list->empty() && !list->is_array_of_tables()))
+      in.fail("folds",
+              "expected a list of fold lines [{ axis = \"col\", at = 0.5, angle = 2.5 }, ...]");
+    for (const toml::node& item : *list) {
+      TableReader fold_in(*item.as_table(), "flag.folds", detail::where(item.source()));
+      Fold fold;
+      fold.axis = fold_in.choice_of("axis", fold.axis, kFoldAxisNames);
+      const std::optional<double> at =
+          fold_in.optional_real("at", Bound{0.0, 1.0, true}, "(fraction of the flag)");
+      const std::optional<double> angle =
+          fold_in.optional_real("angle", Bound{0.0, kPi, true}, "rad");
+      if (!at || !angle)
+        fold_in.fail(at ? "angle" : "at", "a fold line needs where it lies (at) and its angle");
+      if (!(*at < 1.0))
+        fold_in.fail("at", "1 is the flag's edge: a fold line lies inside, 0 < at < 1");
+      fold.at = *at;
+      fold.angle_rad = *angle;
+      fold_in.finish(kAllKeys);
+      flag.folds.push_back(fold);
+    }
+  }
 }
 
 void read_effect_tables(TableReader& root, Scene& scene) {
@@ -382,6 +418,18 @@ void read_infill_tables(TableReader& root, Scene& scene) {
     if (auto rounds = in.optional_integer("rounds", 0, 1000)) w.rounds = int(*rounds);
     in.finish(kAllKeys);
     scene.wrinkles = w;
+  }
+  if (const toml::table* t = root.subtable("creases")) {
+    TableReader in(*t, "creases", root.where_of("creases"));
+    Creases creases;
+    creases.yield_angle_rad =
+        in.real("yield_angle", creases.yield_angle_rad, Bound::between(0.0, kPi), "rad");
+    creases.set_time_s = in.real("set_time", creases.set_time_s, Bound{0.0, 1.0e9, true}, "s");
+    creases.relax_time_s =
+        in.real("relax_time", creases.relax_time_s, Bound{0.0, 1.0e9, true}, "s");
+    creases.width_m = in.real("width", creases.width_m, Bound{0.0, 1.0, true}, "m");
+    in.finish(kAllKeys);
+    scene.creases = creases;
   }
   if (const toml::table* t = root.subtable("infill")) {
     TableReader in(*t, "infill", root.where_of("infill"));

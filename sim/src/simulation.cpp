@@ -56,6 +56,8 @@ void set_physics_state(physics::ClothIntegrator& physics, const SimulationState&
   const std::size_t n = physics.state().x_m.size();
   check_state_size("the physics positions", state.physics.x_m.size(), n);
   check_state_size("the physics velocities", state.physics.v_m_s.size(), n);
+  check_state_size("the physics memory (crease rest angles)", state.physics.memory.size(),
+                   physics.state().memory.size());
   physics.set_state(state.physics);
   if (state.wind && physics.wind_drift()) physics.set_wind_drift(*state.wind);
 }

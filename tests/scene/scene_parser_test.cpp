@@ -232,5 +232,46 @@ TEST(SceneParser, KeyInTheWrongTableIsPointedToItsHome) {
             std::string::npos);
 }
 
+// Issue 32: fold lines and [creases], each mistake named with its line and key.
+TEST(SceneParser, FoldLinesAndCreasesAreReadAndChecked) {
+  const std::string folded = std::string(kMinimal) +
+                             "folds = [{ axis = \"row\", at = 0.25, angle = 3.0 }, "
+                             "{ at = 0.5, angle = 1.5 }]\n";
+  const std::string creases = "[bending]\nstiffness = 1e-4\n[creases]\nset_time = 2.0\n";
+  const Scene scene = parse_scene(folded + creases, "s.toml");
+  ASSERT_EQ(scene.flag.folds.size(), 2u);
+  EXPECT_EQ(scene.flag.folds[0].axis, FoldAxis::kRow);
+  EXPECT_EQ(scene.flag.folds[0].at, 0.25);
+  EXPECT_EQ(scene.flag.folds[0].angle_rad, 3.0);
+  EXPECT_EQ(scene.flag.folds[1].axis, FoldAxis::kCol);  // the default axis
+  ASSERT_TRUE(scene.creases);
+  EXPECT_EQ(scene.creases->set_time_s, 2.0);
+  EXPECT_EQ(scene.creases->yield_angle_rad, Creases{}.yield_angle_rad);
+  EXPECT_EQ(error_of(folded),
+            "s.toml:7:9: flag.folds: fold lines are creases: they need [creases] (how a crease "
+            "sets and relaxes; an empty table takes the defaults)");
+  EXPECT_EQ(error_of(std::string(kMinimal) + "[creases]\n"),
+            "s.toml:7:1: creases: a crease is a rest angle of the cloth's bending: add [bending] "
+            "(its stiffness is the crease's)");
+  EXPECT_EQ(error_of(folded + creases, {"scene.mode=\"xpbd\""}),
+            "s.toml:10:1: creases: the xpbd backend has no creases yet; they run with "
+            "spring-damper (scene.mode hybrid or mass-spring) and implicit");
+  EXPECT_EQ(
+      error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 1.0, angle = 1 }]\n"),
+      "s.toml:7:31: flag.folds.at: 1 is the flag's edge: a fold line lies inside, 0 < at < 1");
+  EXPECT_NE(error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 0.5 }]\n")
+                .find("flag.folds.angle: a fold line needs where it lies (at) and its angle"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "folds = [{ axis = \"diagonal\", at = 0.5 }]\n")
+                .find("flag.folds.axis"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 0.5, angle = 4 }]\n")
+                .find("flag.folds.angle"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "folds = 3\n").find("flag.folds: expected a list"),
+            std::string::npos);
+  EXPECT_NE(error_of(folded + creases + "width = 0\n").find("creases.width"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace flagsim

@@ -61,6 +61,12 @@ class ForceTerm {
     return false;
   }
 
+  /// What a later frame depends on besides the positions and velocities (a
+  /// crease's rest angles, creased_bending.hpp): saved with the state
+  /// (ClothState::memory) and restored into the term at every frame's start.
+  /// Empty for a term without memory.
+  virtual std::span<const double> memory() const { return {}; }
+  virtual void set_memory(std::span<const double> /*memory*/) {}
   /// Evaluates and keeps the derivatives at (x, v) that the products below
   /// use (the implicit stepper calls it once per Newton iteration).
   virtual void linearize(std::span<const Vec3> /*x_m*/, std::span<const Vec3> /*v_m_s*/,

@@ -47,6 +47,8 @@ struct Material {
   /// kDefaultYarn's), E as stated or 8 D / (pi r^3). Without, [wrinkles]' own
   /// keys, each kDefaultYarn's where absent (the physics has no bending then).
   Yarn yarn;
+  /// [creases]: the bending's rest angles set and relax; nullopt: no creases.
+  std::optional<Creases> creases;
 };
 
 /// Called with a key ("wrinkles.fiber_modulus") and what is wrong with it

@@ -41,6 +41,24 @@ inline constexpr NameTable<PinSet, 5> kPinNames = {{{PinSet::kLeft, "left"},
                                                     {PinSet::kCorners, "corners"},
                                                     {PinSet::kNone, "none"}}};
 
+/// flag.folds' axis: the fiber family a fold line runs along.
+enum class FoldAxis {
+  kRow,  ///< the line runs along a row (across the columns, which it bends), at a fraction of the
+         ///< height
+  kCol,  ///< the line runs along a column (across the rows), at a fraction of the width from the
+         ///< pole
+};
+inline constexpr NameTable<FoldAxis, 2> kFoldAxisNames = {
+    {{FoldAxis::kRow, "row"}, {FoldAxis::kCol, "col"}}};
+
+/// One fold line a flag starts with (flag.folds), as if stored folded: a crease
+/// of rest angle `angle_rad` across the fibers it crosses ([creases]).
+struct Fold {
+  FoldAxis axis = FoldAxis::kCol;
+  double at = 0.5;         ///< where, as a fraction (0..1) of the height (row) or width (col)
+  double angle_rad = 0.0;  ///< the crease's rest angle (0 flat, pi folded flat on itself)
+};
+
 struct FlagSpec {
   double width_m = 1.5;
   double height_m = 1.0;
@@ -57,6 +75,8 @@ struct FlagSpec {
   /// nodes at t = 0, m (extension key). A flat flag in a wind along its plane
   /// is an unstable equilibrium; this is what breaks the symmetry, reproducibly.
   double initial_perturbation_m = 0.0;
+  /// Fold lines present at t = 0 (flag.folds; they need [creases]).
+  std::vector<Fold> folds;
 };
 
 // The optional tables' structs exist only where the scene has the table; each
@@ -155,6 +175,25 @@ struct Wrinkles {
   std::optional<double> k_prime;
   std::optional<double> tolerance;
   std::optional<int> rounds;
+};
+
+/// [creases]: plastic bending, the paper's future work (its section 5): a fold
+/// held sharper than `yield_angle` sets into a crease, the cloth's rest angle
+/// there, which relaxes again while the cloth is held flatter than it and
+/// pulled. Each fiber's held angle theta_h (its present angle theta low-passed
+/// over set_time) and rest angle theta_r move per output frame of dt:
+///   setting,  theta_h > max(theta_r, yield):  theta_r += (theta_h - theta_r)(1 - exp(-dt /
+///   set_time)) relaxing, theta < theta_r:  theta_r += (theta - theta_r)(1 - exp(-dt phi /
+///   relax_time))
+/// phi = 1 / (1 + sqrt(T_c / T)) is the share of the crease's unfolding its hinge
+/// takes, with T the tension across it (stretch modulus times strain, N/m) and
+/// T_c = D / width^2 (coarse_physics/creased_bending.hpp): a crease relaxes
+/// faster the harder it is pulled, and not at all without tension.
+struct Creases {
+  double yield_angle_rad = 1.0;  ///< a fold below it leaves nothing (57 degrees)
+  double set_time_s = 1.0;       ///< time constant of setting, s
+  double relax_time_s = 30.0;    ///< time constant of relaxing under a tension far above T_c, s
+  double width_m = 1.0e-3;       ///< the crease's hinge, the yarns bent past their yield, m
 };
 
 /// Which infill fills the dense lattice ([infill] solver).
@@ -263,6 +302,7 @@ struct Scene {
   std::optional<Wind> wind;
   std::optional<Bending> bending;
   std::optional<Wrinkles> wrinkles;
+  std::optional<Creases> creases;
   std::optional<InfillSettings> infill;
   Solver solver;
   std::vector<Keyframe> keyframes;
@@ -285,6 +325,7 @@ struct Scene {
 // Each enum's name as the scene file spells it (null-terminated).
 const char* to_string(Mode mode);
 const char* to_string(PinSet pin);
+const char* to_string(FoldAxis axis);
 const char* to_string(InfillSolverKind kind);
 const char* to_string(Backend backend);
 const char* to_string(LinearSolver linear);
