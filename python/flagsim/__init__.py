@@ -44,9 +44,12 @@ def _toml_value(value):
         return f'"{escaped}"'
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):  # an inline table: a fold line of flag.folds
+        return "{ " + ", ".join(f"{_toml_value(str(k))} = {_toml_value(v)}"
+                                for k, v in value.items()) + " }"
     if hasattr(value, "tolist"):  # numpy arrays and scalars
         return _toml_value(value.tolist())
-    raise SceneError(f"{value!r}: expected a number, bool, string or list for a scene value")
+    raise SceneError(f"{value!r}: expected a number, bool, string, list or dict for a scene value")
 
 
 def _toml_document(scene):

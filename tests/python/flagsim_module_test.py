@@ -139,6 +139,9 @@ class State(unittest.TestCase):
         "mass-spring": (None, {"scene.mode": "mass-spring", "flag.fine": [17, 25]}),
         "implicit": (None, {"scene.mode": "implicit", "flag.fine": [17, 25]}),
         "xpbd": (None, {"scene.mode": "xpbd", "flag.fine": [17, 25]}),
+        "mass-spring, creased": (None, {"scene.mode": "mass-spring", "flag.fine": [17, 25],
+                                        "flag.folds": [{"axis": "col", "at": 0.5, "angle": 2.5}],
+                                        "bending.stiffness": 1e-4, "creases.set_time": 1.0}),
         "infill": (os.path.join(SCENES, "infill", "twisted.toml"), {"flag.fine": [17, 25]}),
     }
 
@@ -173,6 +176,21 @@ class State(unittest.TestCase):
         sim.set_state({**saved, "infill_memory": -saved["infill_memory"]})
         sim.step()
         self.assertGreater(np.abs(sim.positions - kept).max(), 1e-4)
+
+    def test_the_creases_rest_angles_are_restored(self):
+        # The creases' rest and held angles (issue 32): 2 x 766 bending triples of 17 x 25.
+        scene, overrides = self.CASES["mass-spring, creased"]
+        sim = flagsim.Simulation(scene, overrides=overrides)
+        sim.step(3)
+        saved = sim.state()
+        self.assertEqual(saved["physics_memory"].shape, (2 * (17 * 23 + 15 * 25),))
+        sim.step()
+        kept = sim.positions.copy()
+        sim.set_state({**saved, "physics_memory": 0 * saved["physics_memory"]})  # no creases
+        sim.step()
+        self.assertGreater(np.abs(sim.positions - kept).max(), 1e-6)
+        with self.assertRaises(flagsim.SceneError):
+            sim.set_state({**saved, "physics_memory": saved["physics_memory"][:-1]})
 
     def test_the_state_names_its_parts(self):
         sim = flagsim.Simulation(None, overrides=SMALL)
