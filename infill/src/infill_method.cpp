@@ -10,7 +10,7 @@ std::unique_ptr<InfillMethod> make_infill(const Lattice& fine, const CellGrid& g
   if (options.solver == InfillSolverKind::kPaper)
     return std::make_unique<InfillSolver>(fine, grid, options.relax_sweeps, options.wrinkles,
                                           options.wrinkle_rounds);
-  return std::make_unique<SmoothInfill>(fine, grid, options.wrinkles);
+  return std::make_unique<SmoothInfill>(fine, grid, options.wrinkles, options.creases);
 }
 
 }  // namespace flagsim::infill

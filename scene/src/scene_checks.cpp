@@ -47,6 +47,15 @@ std::optional<std::pair<const char*, std::string>> crease_problem(const Scene& s
     return std::pair{"creases",
                      std::string("a crease is a rest angle of the cloth's bending: add [bending] "
                                  "(its stiffness is the crease's)")};
+  if (scene.mode == Mode::kHybrid && infill_solver_of(scene) == InfillSolverKind::kPaper)
+    return std::pair{"creases",
+                     std::string("the hybrid draws its crease lines with the smooth infill; "
+                                 "infill.solver = \"paper\" has none yet")};
+  if (scene.mode == Mode::kHybrid && !scene.output.dense)
+    return std::pair{"output.dense",
+                     std::string("false keeps the coarse trajectory without the creases' rest "
+                                 "angles, which the dense frames' crease lines need; leave it "
+                                 "out with [creases]")};
   if (const std::optional<Backend> backend = backend_of(scene);
       backend && *backend != Backend::kSpringDamper && *backend != Backend::kImplicit)
     return std::pair{"creases",

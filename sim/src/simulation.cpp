@@ -151,6 +151,16 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene, const Ma
   return params;
 }
 
+// The ridges of the coarse physics' creases on the dense lattice (hybrid mode
+// with [creases]), or nullopt.
+std::optional<infill::CreaseRidgeParams> crease_ridge_params(const Scene& scene,
+                                                             const Material& material) {
+  if (scene.mode != Mode::kHybrid || !material.creases || !material.bending_rigidity_j)
+    return std::nullopt;
+  return infill::CreaseRidgeParams{*material.bending_rigidity_j, material.creases->width_m,
+                                   material.stretch_modulus_n_m};
+}
+
 // The dense lattice filled by the paper's infill from coarse nodes: shared by
 // the infill and hybrid modes. Velocities are the frame-to-frame differences
 // (for the divergence checks and /frames/velocity), and the kinetic energy is
@@ -169,7 +179,8 @@ class DenseInfill {
         solver_(infill::make_infill(
             lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
             {infill_solver_of(scene), paper_relax_sweeps_of(scene), wrinkle_params(scene, material),
-             scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0})),
+             scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0,
+             crease_ridge_params(scene, material)})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
         obstacles_(physics::Obstacles::of(scene)),
@@ -206,6 +217,10 @@ class DenseInfill {
   /// New dense lattice of frame `frame` from the coarse nodes [Jc*Kc];
   /// velocities over 1/fps. With solids ([pole] radius, [ground]) no dense
   /// node is left inside one: the infill does not undo the physics' contact.
+  /// The coarse physics' crease rest angles (and more, ignored) for the next fills.
+  void set_creases(std::span<const double> coarse_rest_rad) {
+    solver_->set_creases(coarse_rest_rad);
+  }
   void fill(std::span<const Vec3> coarse_m, int frame, StageTimes* times) {
     std::copy(positions_.begin(), positions_.end(), previous_.begin());
     solver_->fill(coarse_m, positions_, times);
@@ -326,6 +341,7 @@ class HybridSimulation final : public Simulation {
         paper_infill_(infill_solver_of(model_->scene()) == InfillSolverKind::kPaper) {
     dense_.hold_pins(model_->scene().flag.pin);
     make_reachable();  // frame 0: the coarse nodes where the physics starts
+    dense_.set_creases(physics_->state().memory);
     dense_.fill(reachable_, 0, nullptr);
     dense_.forget_velocities();
   }
@@ -345,6 +361,7 @@ class HybridSimulation final : public Simulation {
     ++frame_;
     if (!replay_) physics_->advance_frame(times);
     run_timed(times, slack_stage_, [&] { make_reachable(); });
+    dense_.set_creases(physics_->state().memory);  // the creases' rest angles, if any
     dense_.fill(reachable_, frame_, times);
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }

@@ -9,7 +9,8 @@
 namespace flagsim::infill {
 
 SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
-                           std::optional<WrinkleParams> wrinkles)
+                           std::optional<WrinkleParams> wrinkles,
+                           std::optional<CreaseRidgeParams> creases)
     : lattice_(fine),
       grid_(grid),
       spline_(fine, grid),
@@ -27,8 +28,9 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
     row_link_taps_.push_back(taps_at((k + 0.5) / grid.col_stride - 0.5, grid.coarse_cols - 1));
   for (int k = 0; k < fine.cols; ++k)
     col_node_taps_.push_back(taps_at(double(k) / grid.col_stride, grid.coarse_cols));
+  if (creases) creases_.emplace(fine, grid, *creases);
+  if (wrinkles_ || creases_) normals_.resize(fine.node_count());
   if (wrinkles_) {
-    normals_.resize(fine.node_count());
     last_offset_.assign(fine.node_count(), 0.0);
     wave_.resize(std::size_t(std::max(fine.rows, fine.cols)));
   }
@@ -152,19 +154,24 @@ void SmoothInfill::register_stages(StageTimes& times) {
   stages_.bands = times.add("infill_3.3", StageGroup::kInfill);
   stages_.projection = times.add("infill_3.4", StageGroup::kInfill);
   if (wrinkles_) stages_.wrinkles = times.add("infill_3.5", StageGroup::kInfill);
+  if (creases_) stages_.creases = times.add("infill_creases", StageGroup::kInfill);
 }
 
-void SmoothInfill::add_wrinkles(std::span<Vec3> positions_m) {
-  const int J = lattice_.rows, K = lattice_.cols;
+void SmoothInfill::set_normals() {
   // The surface's normal at every node, from its neighbours along both fibers.
   const NodeView surface(lattice_, std::as_const(surface_));
   const NodeView normals(lattice_, normals_);
-  for (int j = 0; j < J; ++j)
-    for (int k = 0; k < K; ++k) {
+  for (int j = 0; j < lattice_.rows; ++j)
+    for (int k = 0; k < lattice_.cols; ++k) {
       const Vec3 along_row = surface.clamped(j, k + 1) - surface.clamped(j, k - 1);
       const Vec3 along_col = surface.clamped(j + 1, k) - surface.clamped(j - 1, k);
       normals.at(j, k) = along_row.cross(along_col).normalized();
     }
+}
+
+void SmoothInfill::add_wrinkles(std::span<Vec3> positions_m) {
+  const int J = lattice_.rows, K = lattice_.cols;
+  set_normals();
   std::vector<double> offset(lattice_.node_count(), 0.0);
   const auto fiber_wave = [&](std::size_t first, std::size_t stride, int segments, double rest_m) {
     double length = 0.0;  // c: the fiber along the surface
@@ -316,6 +323,18 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
     projected = projection_.project(positions_m, kProjectionTolerance, kMaxProjectionRounds,
                                     kStepsPerFiber);
   };
+  // The crease lines' ridges, laid on before the last projection (the wrinkles'
+  // re-lay would replace them): crease_ridges.hpp.
+  const bool ridges = creases_ && creases_->any();
+  const auto add_ridges = [&] {
+    run_timed(times, stages_.creases, [&] {
+      if (!wrinkles_) set_normals();  // else 3.5 has just set them
+      const std::vector<double>& offsets = creases_->offsets(coarse_m);
+      for (std::size_t i = 0; i < positions_m.size(); ++i)
+        if (!held_[i]) positions_m[i] += offsets[i] * normals_[i];  // the pole holds its edge
+    });
+  };
+  if (ridges && !wrinkles_) add_ridges();
   run_timed(times, stages_.projection, relax);
   if (smooths_)  // the coarsest level: the correction at the scale of a cell, smoothed
     for (int cycle = 0; cycle < kSmoothingCycles; ++cycle) {
@@ -324,6 +343,7 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
     }
   if (wrinkles_) {
     run_timed(times, stages_.wrinkles, [&] { add_wrinkles(positions_m); });
+    if (ridges) add_ridges();
     run_timed(times, stages_.projection, relax);
     for (std::size_t i = 0; i < positions_m.size(); ++i)
       last_offset_[i] = (positions_m[i] - surface_[i]).dot(normals_[i]);

@@ -12,6 +12,7 @@
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/stage_times.hpp"
 #include "flagsim/infill/cell_grid.hpp"
+#include "flagsim/infill/crease_ridges.hpp"
 #include "flagsim/infill/wrinkles.hpp"
 #include "flagsim/scene/scene.hpp"
 
@@ -35,6 +36,8 @@ struct InfillOptions {
   int relax_sweeps = 1000;  ///< the paper solver's 3.4 cap
   std::optional<WrinkleParams> wrinkles;
   int wrinkle_rounds = 2;  ///< 3.5/3.4 alternations (paper solver)
+  /// [creases]: the coarse physics' crease lines drawn as ridges (smooth solver)
+  std::optional<CreaseRidgeParams> creases;
 };
 
 class InfillMethod {
@@ -53,6 +56,10 @@ class InfillMethod {
   /// What a fill carries into the next besides the dense positions (the
   /// smooth solver's 3.5 offsets along the normals [J*K], m, with wrinkles);
   /// empty when nothing is. set_memory takes what memory() gave.
+  /// The coarse physics' crease rest angles (coarse bending triples'
+  /// order), given before each fill with [creases]; a solver that draws no
+  /// crease lines ignores them.
+  virtual void set_creases(std::span<const double> /*coarse_rest_rad*/) {}
   virtual std::vector<double> memory() const { return {}; }
   virtual void set_memory(std::span<const double> /*memory*/) {}
 };

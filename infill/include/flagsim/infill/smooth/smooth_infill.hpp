@@ -62,6 +62,7 @@
 #include <span>
 #include <vector>
 
+#include "flagsim/infill/crease_ridges.hpp"
 #include "flagsim/infill/infill_method.hpp"
 #include "flagsim/infill/smooth/fiber_projection.hpp"
 #include "flagsim/infill/smooth/spline_surface.hpp"
@@ -127,8 +128,11 @@ inline constexpr int kStepsPerFiber = 4;
 class SmoothInfill final : public InfillMethod {
  public:
   /// @param wrinkles  step 3.5, or nullopt to leave it out (no [wrinkles] table)
+  /// @param creases   the coarse physics' creases drawn as ridges (crease_ridges.hpp;
+  ///                   this level only: the coarser levels have none), or nullopt
   SmoothInfill(const Lattice& fine, const CellGrid& grid,
-               std::optional<WrinkleParams> wrinkles = std::nullopt);
+               std::optional<WrinkleParams> wrinkles = std::nullopt,
+               std::optional<CreaseRidgeParams> creases = std::nullopt);
 
   void hold(std::span<const std::uint8_t> nodes) override;
   void register_stages(StageTimes& times) override;
@@ -138,10 +142,15 @@ class SmoothInfill final : public InfillMethod {
   const CellGrid& grid() const override { return grid_; }
   std::vector<double> memory() const override;
   void set_memory(std::span<const double> memory) override;
+  void set_creases(std::span<const double> coarse_rest_rad) override {
+    if (creases_) creases_->set_rest(coarse_rest_rad);
+  }
 
  private:
   /// 3.3: every link's band from the coarse links it lies between.
   void set_bands(std::span<const Vec3> coarse_m);
+  /// normals_: the surface's normal at every node.
+  void set_normals();
   /// 3.5: each node's offset along the surface's normal set to the whole fibers' waves.
   void add_wrinkles(std::span<Vec3> positions_m);
   /// The coarser level's offsets from its surface, interpolated to this
@@ -172,13 +181,14 @@ class SmoothInfill final : public InfillMethod {
   /// Columns of the frame's StageTimes (-1: not timed): 3.1-3.2, 3.3, 3.4 (with
   /// the coarser levels' projections), 3.5.
   struct Stages {
-    int surface = -1, bands = -1, projection = -1, wrinkles = -1;
+    int surface = -1, bands = -1, projection = -1, wrinkles = -1, creases = -1;
   } stages_;
   std::optional<WrinkleParams> wrinkles_;
+  std::optional<CreaseRidges> creases_;  ///< the crease lines' ridges ([creases])
   std::vector<Vec3> surface_;  ///< this frame's mean surface (3.1), read by 3.5 and the level above
   bool smooths_ = false;       ///< this level runs the kSmoothingCycles (set by the finest level)
   std::vector<Vec3> correction_, smoothed_;  ///< smooth_correction's work buffers
-  std::vector<Vec3> normals_;                ///< 3.5: the surface's normals
+  std::vector<Vec3> normals_;                ///< 3.5 and the ridges: the surface's normals
   std::vector<double> last_offset_;          ///< 3.5: last frame's offset along its normal, m
   std::vector<double> wave_;                 ///< 3.5: one fiber's wave, work buffer
   FillReport report_;
