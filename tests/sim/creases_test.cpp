@@ -115,8 +115,8 @@ TEST(Creases, TheWindPullsTheFoldLinesOutFasterTheStrongerItBlows) {
 std::vector<double> column_turning(std::span<const Vec3> x, int rows, int cols) {
   std::vector<double> medians;
   for (int k = 1; k + 1 < cols; ++k) {
-    std::vector<double> column;
-    for (int j = 0; j < rows; ++j) column.push_back(turning(x, cols, j, k, true));
+    std::vector<double> column(std::size_t(rows), 0.0);
+    for (int j = 0; j < rows; ++j) column[std::size_t(j)] = turning(x, cols, j, k, true);
     medians.push_back(median(column));
   }
   return medians;
