@@ -193,7 +193,7 @@ void BulletCloth::advance_frame(StageTimes* times) {
   times_ = times;
   const double start = state_.time_s;
   const double dt = substep_s();
-  for (const auto& term : terms_) term->begin_frame(start, state_.x_m);
+  physics::begin_frame(terms_, state_);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point began = Clock::now();
   double in_terms = 0.0;

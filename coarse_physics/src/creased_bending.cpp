@@ -45,13 +45,14 @@ std::vector<double> initial_crease_memory(std::span<const Fold> folds, const Lat
 }
 
 CreasedBending::CreasedBending(const ClothModel& model, double rigidity_j, const Creases& creases,
-                               double frame_s, std::vector<double> memory)
+                               double frame_s, std::vector<double> memory, bool plain)
     : triples_(bending_triples(model.lattice, rigidity_j)),
       memory_(std::move(memory)),
       creases_(creases),
       stretch_modulus_n_m_(model.material.stretch_modulus_n_m),
       hinge_tension_n_m_(rigidity_j / (creases.width_m * creases.width_m)),
-      frame_s_(frame_s) {
+      frame_s_(frame_s),
+      plain_(plain ? 1.0 : 0.0) {
   assert(memory_.size() == 2 * triples_.size());
   const Lattice& lattice = model.lattice;
   const std::size_t row_triples =
@@ -120,10 +121,10 @@ void CreasedBending::begin_frame(double time_s, std::span<const Vec3> x_m) {
 
 namespace {
 
-// dE/dq / k_b = (1 - c / R) q, with R = sqrt(|q|^2 + eps^2).
-Vec3 scaled_gradient(const Vec3& q, double c, double eps) {
-  if (c == 0.0) return q;  // no crease: bending_springs' force, bit for bit
-  return (1.0 - c / std::sqrt(q.squaredNorm() + eps * eps)) * q;
+// dE/dq / k_b = (plain - c / R) q, with R = sqrt(|q|^2 + eps^2).
+Vec3 scaled_gradient(const Vec3& q, double c, double eps, double plain) {
+  if (c == 0.0) return plain * q;  // no crease: bending_springs' force, bit for bit
+  return (plain - c / std::sqrt(q.squaredNorm() + eps * eps)) * q;
 }
 
 }  // namespace
@@ -133,7 +134,7 @@ void CreasedBending::add_forces(std::span<const Vec3> x_m, std::span<const Vec3>
   for (std::size_t t = 0; t < triples_.size(); ++t) {
     const auto [a, b, c, k] = triples_[t];
     const Vec3 q = x_m[a] - 2.0 * x_m[b] + x_m[c];
-    const Vec3 g = k * scaled_gradient(q, rest_m_[t], kCreaseRounding * spacing_m_[t]);
+    const Vec3 g = k * scaled_gradient(q, rest_m_[t], kCreaseRounding * spacing_m_[t], plain_);
     forces_n[a] -= g;
     forces_n[b] += 2.0 * g;
     forces_n[c] -= g;
@@ -146,16 +147,17 @@ double CreasedBending::energy(std::span<const Vec3> x_m) const {
     const auto [a, b, c, k] = triples_[t];
     const double q2 = (x_m[a] - 2.0 * x_m[b] + x_m[c]).squaredNorm();
     const double eps = kCreaseRounding * spacing_m_[t];
-    total += 0.5 * k * q2 - k * rest_m_[t] * (std::sqrt(q2 + eps * eps) - eps);
+    total += 0.5 * plain_ * k * q2 - k * rest_m_[t] * (std::sqrt(q2 + eps * eps) - eps);
   }
   return total;
 }
 
 void CreasedBending::add_stiffness_bound(std::span<double> row_sum_n_m) const {
-  // ||d2E/dq2|| <= k_b max(1, c / eps - 1) <= k_b (1 + c / eps); g g^T's row sums 4, 8, 4.
+  // ||d2E/dq2|| <= k_b max(1, c / eps - 1) <= k_b (1 + c / eps) (the crease's part
+  // alone: k_b c / eps); g g^T's row sums 4, 8, 4.
   for (std::size_t t = 0; t < triples_.size(); ++t) {
     const auto [a, b, c, k] = triples_[t];
-    const double bound = k * (1.0 + rest_m_[t] / (kCreaseRounding * spacing_m_[t]));
+    const double bound = k * (plain_ + rest_m_[t] / (kCreaseRounding * spacing_m_[t]));
     row_sum_n_m[a] += 4.0 * bound;
     row_sum_n_m[b] += 8.0 * bound;
     row_sum_n_m[c] += 4.0 * bound;
@@ -169,8 +171,8 @@ void CreasedBending::linearize(std::span<const Vec3> x_m, std::span<const Vec3>,
     const Vec3 q = x_m[a] - 2.0 * x_m[b] + x_m[c];
     const double eps = kCreaseRounding * spacing_m_[t], rest = rest_m_[t];
     const double r2 = q.squaredNorm() + eps * eps, r = std::sqrt(r2);
-    // (1 - c / R) across q, 1 - c eps^2 / R^3 along it.
-    double across = 1.0 - rest / r, along = 1.0 - rest * eps * eps / (r2 * r);
+    // (1 - c / R) across q, 1 - c eps^2 / R^3 along it (less the 1 for the crease alone).
+    double across = plain_ - rest / r, along = plain_ - rest * eps * eps / (r2 * r);
     if (how == Definiteness::kProjected) {
       across = std::max(across, 0.0);
       along = std::max(along, 0.0);

@@ -1,5 +1,6 @@
 #include "flagsim/coarse_physics/initial_shape.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -42,6 +43,24 @@ std::vector<double> smooth_perturbation(const Lattice& lattice, std::uint64_t se
     }
   }
   return z;
+}
+
+void begin_frame(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state) {
+  const auto each_memory = [&](auto&& visit) {
+    std::size_t at = 0;
+    for (const auto& term : terms) {
+      const std::size_t size = term->memory().size();
+      if (size > 0) visit(*term, std::span<double>(state.memory).subspan(at, size));
+      at += size;
+    }
+  };
+  if (!state.memory.empty())
+    each_memory([](ForceTerm& term, std::span<double> memory) { term.set_memory(memory); });
+  for (const auto& term : terms) term->begin_frame(state.time_s, state.x_m);
+  if (!state.memory.empty())
+    each_memory([](const ForceTerm& term, std::span<double> memory) {
+      std::copy(term.memory().begin(), term.memory().end(), memory.begin());
+    });
 }
 
 ClothState initial_state(const Scene& scene, const ClothModel& model) {

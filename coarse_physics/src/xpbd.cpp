@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "flagsim/coarse_physics/bending_springs.hpp"
+#include "flagsim/coarse_physics/creased_bending.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/force_terms.hpp"
 #include "flagsim/core/lanes.hpp"
@@ -33,7 +34,16 @@ Xpbd::Xpbd(const Scene& scene, std::shared_ptr<const ClothModel> model)
       state_(initial_state(scene, *model_)),
       iterations_(scene.solver.iterations.value_or(1)),
       frame_s_(1.0 / scene.fps),
-      stable_substep_s_(explicit_stability_limit(*model_, terms_)) {
+      stable_substep_s_(0.0) {
+  // With [creases], the bending stays a constraint and the creases' part of it
+  // (creased_bending.hpp, plain = false) is a force with the others.
+  if (model_->material.bending_rigidity_j && model_->material.creases)
+    terms_.insert(terms_.begin(), std::make_unique<CreasedBending>(
+                                      *model_, *model_->material.bending_rigidity_j,
+                                      *model_->material.creases, frame_s_,
+                                      initial_crease_memory(scene.flag.folds, model_->lattice),
+                                      /*plain=*/false));
+  stable_substep_s_ = explicit_stability_limit(*model_, terms_);
   substeps_ = physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
   const double propagation =
       xpbd_propagation_substep_s(*model_, model_->material.stretch_modulus_n_m,

@@ -56,12 +56,6 @@ std::optional<std::pair<const char*, std::string>> crease_problem(const Scene& s
                      std::string("false keeps the coarse trajectory without the creases' rest "
                                  "angles, which the dense frames' crease lines need; leave it "
                                  "out with [creases]")};
-  if (const std::optional<Backend> backend = backend_of(scene);
-      backend && *backend != Backend::kSpringDamper && *backend != Backend::kImplicit)
-    return std::pair{"creases",
-                     fmt::format("the {} backend has no creases yet; they run with spring-damper "
-                                 "(scene.mode hybrid or mass-spring) and implicit",
-                                 to_string(*backend))};
   return std::nullopt;
 }
 

@@ -46,6 +46,25 @@ TEST(CreasedBending, HessianIsMinusForceJacobian) {
   }
 }
 
+TEST(CreasedBending, TheCreasesPartAloneIsTheWholeLessThePlainBending) {
+  // XPBD's form (plain = false): its bending is a constraint, the crease a force.
+  const ClothModel model = make_cloth_model(test::small_cloth(4, 5));
+  std::vector<double> memory = random_rest(model.lattice, 2);
+  memory.resize(2 * memory.size(), 0.0);
+  CreasedBending alone(model, 0.02, Creases{}, 0.1, memory, /*plain=*/false);
+  const CreasedBending whole(model, 0.02, Creases{}, 0.1, memory);
+  const BendingSprings plain(model, 0.02);
+  EXPECT_EQ(alone.name(), "creases");
+  for (const double amplitude : {0.05, 0.005}) {
+    const std::vector<Vec3> x = test::jiggled(model.lattice, amplitude, 5);
+    test::expect_force_is_minus_energy_gradient(alone, x);
+    test::expect_derivative_is_minus_force_jacobian(alone, x, std::vector<Vec3>(x.size()),
+                                                    test::Wrt::kPosition);
+    EXPECT_NEAR(alone.energy(x) + plain.energy(x), whole.energy(x),
+                test::kRoundOff * std::abs(whole.energy(x)) + 1e-15);
+  }
+}
+
 TEST(CreasedBending, WithoutACreaseItIsTheBendingOfBendingSprings) {
   const ClothModel model = make_cloth_model(test::small_cloth(5, 6));
   const CreasedBending bending =

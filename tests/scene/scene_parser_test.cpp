@@ -253,9 +253,10 @@ TEST(SceneParser, FoldLinesAndCreasesAreReadAndChecked) {
   EXPECT_EQ(error_of(std::string(kMinimal) + "[creases]\n"),
             "s.toml:7:1: creases: a crease is a rest angle of the cloth's bending: add [bending] "
             "(its stiffness is the crease's)");
-  EXPECT_EQ(error_of(folded + creases, {"scene.mode=\"xpbd\""}),
-            "s.toml:10:1: creases: the xpbd backend has no creases yet; they run with "
-            "spring-damper (scene.mode hybrid or mass-spring) and implicit");
+  // Every backend has them (XPBD and Bullet with the crease as a force).
+  for (const char* mode : {"xpbd", "bullet", "implicit"})
+    EXPECT_EQ(error_of(folded + creases, {std::string("scene.mode=\"") + mode + "\""}), "")
+        << mode;
   EXPECT_EQ(
       error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 1.0, angle = 1 }]\n"),
       "s.toml:7:31: flag.folds.at: 1 is the flag's edge: a fold line lies inside, 0 < at < 1");

@@ -84,12 +84,18 @@ TEST(Creases, AFoldedClothKeepsItsFoldLinesWhereNothingPullsThemOut) {
   // Little tension (the two fold lines cross and pull on each other): the
   // creases barely relax (measured 2.4963 rad).
   EXPECT_NEAR(fold_rest_angle(creased->state()), 2.5, 0.01);
-  const auto plain = make_simulation(
-      folded_in_four({"scene.mode=\"mass-spring\"", "flag.pin=\"none\"", "wind.velocity=[0,0,0]",
-                      "gravity.acceleration=[0,0,0]", "flag.folds=[]"}));
-  for (int frame = 1; frame <= 60; ++frame) {
-    plain->advance_frame(nullptr);
-    EXPECT_LT(fold_and_cloth_turning(plain->positions()).first, 0.01) << "frame " << frame;
+  // The other backends keep them too: at least 15x the cloth's turning from
+  // 0.5 s on (measured, lowest over 0.5-2 s: implicit 23x, xpbd 44x, bullet 44x).
+  for (const char* mode : {"implicit", "xpbd", "bullet"}) {
+    std::vector<std::string> sets = calm;
+    sets.emplace_back(std::string("scene.mode=\"") + mode + "\"");
+    const auto other = make_simulation(folded_in_four(sets));
+    for (int frame = 1; frame <= 60; ++frame) {
+      other->advance_frame(nullptr);
+      if (frame < 15) continue;
+      const auto [line, cloth] = fold_and_cloth_turning(other->positions());
+      EXPECT_GT(line, 15.0 * cloth) << mode << " frame " << frame;
+    }
   }
 }
 
@@ -171,7 +177,7 @@ TEST(Creases, TheHybridDrawsAFoldLineWhereItLiesAtDenseResolution) {
 }
 
 TEST(Creases, AStateCarriesTheCreasesAndGoesOnBitForBit) {
-  for (const char* mode : {"mass-spring", "implicit", "hybrid"}) {
+  for (const char* mode : {"mass-spring", "implicit", "xpbd", "bullet", "hybrid"}) {
     const Scene scene =
         folded_in_four({std::string("scene.mode=\"") + mode + "\"", "flag.coarse=[9,13]"});
     const auto first = make_simulation(scene);

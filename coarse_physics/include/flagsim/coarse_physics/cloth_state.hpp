@@ -1,9 +1,7 @@
 #pragma once
 // The mutable state of a cloth, and the start every backend and the infill
 // share.
-#include <algorithm>
 #include <memory>
-#include <span>
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
@@ -31,10 +29,14 @@ struct ClothState {
 ClothState initial_state(const Scene& scene, const ClothModel& model);
 
 /// One output frame of `substeps` substeps of `dt_s`, the loop every stepper
-/// shares: the terms' memory set from the state's, their begin_frame at the
-/// frame's start (the memory, moved there, copied back), then step(dt_s) while
+/// shares: begin_frame (above) at the frame's start, then step(dt_s) while
 /// it returns true and no stop was requested (stop_request.hpp); the time is
 /// start + (s + 1) dt after substep s, so frames land exactly on t = n / fps.
+/// The frame's start every stepper shares: the terms' memory set from the
+/// state's, their begin_frame (which may move the memory: a crease's plastic
+/// step), and the memory copied back into the state.
+void begin_frame(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state);
+
 template <typename Step>
 void advance_substeps(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state,
                       int substeps, double dt_s, Step&& step);
@@ -43,23 +45,7 @@ template <typename Step>
 void advance_substeps(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state,
                       int substeps, double dt_s, Step&& step) {
   const double start = state.time_s;
-  if (!state.memory.empty()) {
-    std::size_t at = 0;
-    for (const auto& term : terms) {
-      const std::size_t size = term->memory().size();
-      term->set_memory(std::span<const double>(state.memory).subspan(at, size));
-      at += size;
-    }
-  }
-  for (const auto& term : terms) term->begin_frame(start, state.x_m);
-  if (!state.memory.empty()) {
-    std::size_t at = 0;
-    for (const auto& term : terms) {
-      const std::span<const double> memory = term->memory();
-      std::copy(memory.begin(), memory.end(), state.memory.begin() + std::ptrdiff_t(at));
-      at += memory.size();
-    }
-  }
+  begin_frame(terms, state);
   for (int s = 0; s < substeps && !stop_requested(); ++s) {
     const bool go_on = step(dt_s);
     state.time_s = start + (s + 1) * dt_s;

@@ -81,10 +81,12 @@ class CreasedBending final : public ForceTerm {
   /// @param frame_s     the output frame's length, s: the plastic step
   /// @param memory     [2 triples] the rest and held angles at the start
   ///                    (initial_crease_memory)
-  CreasedBending(const ClothModel& model, double rigidity_j, const Creases& creases, double frame_s,
-                 std::vector<double> memory);
+  /// @param plain     with the plain bending 1/2 k_b |q|^2 (true), or the crease's
+  ///                  part alone (XPBD: its bending is a constraint, the crease a force)
+  CreasedBending(const ClothModel& model, double rigidity_j, const Creases& creases,
+                 double frame_s, std::vector<double> memory, bool plain = true);
 
-  std::string_view name() const override { return "bending"; }
+  std::string_view name() const override { return plain_ > 0.0 ? "bending" : "creases"; }
   /// The plastic step over the frame that ended at `time_s` (none at t = 0).
   void begin_frame(double time_s, std::span<const Vec3> x_m) override;
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
@@ -116,6 +118,7 @@ class CreasedBending final : public ForceTerm {
   double stretch_modulus_n_m_ = 0.0;  ///< Y, for the tension across a crease
   double hinge_tension_n_m_ = 0.0;    ///< T_c = D / w^2
   double frame_s_ = 0.0;
+  double plain_ = 1.0;  ///< 1 with the plain bending, 0 for the crease's part alone
 };
 
 }  // namespace flagsim::physics
