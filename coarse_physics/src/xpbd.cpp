@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "flagsim/coarse_physics/bending_springs.hpp"
-#include "flagsim/coarse_physics/creased_bending.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
+#include "flagsim/coarse_physics/creased_bending.hpp"
 #include "flagsim/coarse_physics/force_terms.hpp"
 #include "flagsim/core/lanes.hpp"
 #include "flagsim/core/stop_request.hpp"
@@ -38,11 +38,11 @@ Xpbd::Xpbd(const Scene& scene, std::shared_ptr<const ClothModel> model)
   // With [creases], the bending stays a constraint and the creases' part of it
   // (creased_bending.hpp, plain = false) is a force with the others.
   if (model_->material.bending_rigidity_j && model_->material.creases)
-    terms_.insert(terms_.begin(), std::make_unique<CreasedBending>(
-                                      *model_, *model_->material.bending_rigidity_j,
-                                      *model_->material.creases, frame_s_,
-                                      initial_crease_memory(scene.flag.folds, model_->lattice),
-                                      /*plain=*/false));
+    terms_.insert(terms_.begin(),
+                  std::make_unique<CreasedBending>(
+                      *model_, *model_->material.bending_rigidity_j, *model_->material.creases,
+                      frame_s_, initial_crease_memory(scene.flag.folds, model_->lattice),
+                      /*plain=*/false));
   stable_substep_s_ = explicit_stability_limit(*model_, terms_);
   substeps_ = physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
   const double propagation =

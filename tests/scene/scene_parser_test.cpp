@@ -255,8 +255,7 @@ TEST(SceneParser, FoldLinesAndCreasesAreReadAndChecked) {
             "(its stiffness is the crease's)");
   // Every backend has them (XPBD and Bullet with the crease as a force).
   for (const char* mode : {"xpbd", "bullet", "implicit"})
-    EXPECT_EQ(error_of(folded + creases, {std::string("scene.mode=\"") + mode + "\""}), "")
-        << mode;
+    EXPECT_EQ(error_of(folded + creases, {std::string("scene.mode=\"") + mode + "\""}), "") << mode;
   EXPECT_EQ(
       error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 1.0, angle = 1 }]\n"),
       "s.toml:7:31: flag.folds.at: 1 is the flag's edge: a fold line lies inside, 0 < at < 1");

@@ -83,8 +83,8 @@ class CreasedBending final : public ForceTerm {
   ///                    (initial_crease_memory)
   /// @param plain     with the plain bending 1/2 k_b |q|^2 (true), or the crease's
   ///                  part alone (XPBD: its bending is a constraint, the crease a force)
-  CreasedBending(const ClothModel& model, double rigidity_j, const Creases& creases,
-                 double frame_s, std::vector<double> memory, bool plain = true);
+  CreasedBending(const ClothModel& model, double rigidity_j, const Creases& creases, double frame_s,
+                 std::vector<double> memory, bool plain = true);
 
   std::string_view name() const override { return plain_ > 0.0 ? "bending" : "creases"; }
   /// The plastic step over the frame that ended at `time_s` (none at t = 0).
