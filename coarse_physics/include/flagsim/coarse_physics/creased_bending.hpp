@@ -68,6 +68,7 @@ inline constexpr double kCreaseRounding = 0.05;
 /// order) from `folds`: each fold's angle on the triples its line crosses,
 /// shared between the two fiber nodes either side of it in proportion to
 /// their nearness (the total turning across the line is the fold's); capped at pi.
+/// A line within a link of the edge is moved onto the first interior node.
 std::vector<double> fold_rest_angles(std::span<const Fold> folds, const Lattice& lattice);
 
 /// The term's memory at t = 0: the rest angles of `folds` (fold_rest_angles),
