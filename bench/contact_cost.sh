@@ -24,21 +24,14 @@ done
 for scene in pole_wrap pole_calm banner_ground; do
   run "$scene" "$root/scenes/contact/$scene.toml"
 done
-/usr/bin/python3 - "$out" "$rounds" <<'PY'
+/usr/bin/python3 - "$out" "$rounds" "$root/bench" <<'PY'
 import sys
-import h5py
 import numpy as np
 out, rounds = sys.argv[1], int(sys.argv[2])
+sys.path.insert(0, sys.argv[3])
+from stage_medians import show, stages as stages_of
 def stages(name):
-    with h5py.File(f"{out}/{name}.h5", "r") as f:
-        s = f["/stats/stage_seconds"]
-        names = [n.decode() if isinstance(n, bytes) else str(n) for n in s.attrs["stages"]]
-        row = {n: 1e3 * float(np.median(s[1:, i])) for i, n in enumerate(names)}
-        row["whole"] = 1e3 * float(np.median(f["/stats/wall_seconds"][1:]))
-    return row
-def show(label, row):
-    parts = "  ".join(f"{k} {v:.2f}" for k, v in row.items())
-    print(f"{label:<14} {parts}")
+    return stages_of(f"{out}/{name}.h5")
 runs = {}
 for config in ("default", "pole"):
     runs[config] = [stages(f"{config}_r{r}") for r in range(1, rounds + 1)]

@@ -26,24 +26,18 @@ for r in $(seq 1 "$rounds"); do
   run "creases_r$r" --set creases.yield_angle=1.0
   run "folded_r$r" --set creases.yield_angle=1.0 --set "$folds"
 done
-/usr/bin/python3 - "$out" "$rounds" <<'PY'
+/usr/bin/python3 - "$out" "$rounds" "$root/bench" <<'PY'
 import sys
-import h5py
 import numpy as np
 out, rounds = sys.argv[1], int(sys.argv[2])
-def stages(name):
-    with h5py.File(f"{out}/{name}.h5", "r") as f:
-        s = f["/stats/stage_seconds"]
-        names = [n.decode() if isinstance(n, bytes) else str(n) for n in s.attrs["stages"]]
-        row = {n: 1e3 * float(np.median(s[1:, i])) for i, n in enumerate(names)}
-        row["whole"] = 1e3 * float(np.median(f["/stats/wall_seconds"][1:]))
-    return row
+sys.path.insert(0, sys.argv[3])
+from stage_medians import show, stages
 configs = ("bending", "creases", "folded")
 whole = {}
 for config in configs:
-    rows = [stages(f"{config}_r{r}") for r in range(1, rounds + 1)]
+    rows = [stages(f"{out}/{config}_r{r}.h5") for r in range(1, rounds + 1)]
     for r, row in enumerate(rows, 1):
-        print(f"{config} {r:<3} " + "  ".join(f"{k} {v:.2f}" for k, v in row.items()))
+        show(f"{config} {r}", row)
     whole[config] = float(np.median([row["whole"] for row in rows]))
 print("whole frame, median over rounds: " +
       ", ".join(f"{c} {whole[c]:.2f} ms ({whole[c] / whole['bending']:.2f}x)" for c in configs))
