@@ -214,13 +214,13 @@ class DenseInfill {
     effects.emplace_back("infill");
     if (wrinkles_) effects.emplace_back("wrinkles");
   }
-  /// New dense lattice of frame `frame` from the coarse nodes [Jc*Kc];
-  /// velocities over 1/fps. With solids ([pole] radius, [ground]) no dense
-  /// node is left inside one: the infill does not undo the physics' contact.
   /// The coarse physics' crease rest angles (and more, ignored) for the next fills.
   void set_creases(std::span<const double> coarse_rest_rad) {
     solver_->set_creases(coarse_rest_rad);
   }
+  /// New dense lattice of frame `frame` from the coarse nodes [Jc*Kc];
+  /// velocities over 1/fps. With solids ([pole] radius, [ground]) no dense
+  /// node is left inside one: the infill does not undo the physics' contact.
   void fill(std::span<const Vec3> coarse_m, int frame, StageTimes* times) {
     std::copy(positions_.begin(), positions_.end(), previous_.begin());
     solver_->fill(coarse_m, positions_, times);
