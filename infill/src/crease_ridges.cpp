@@ -80,12 +80,60 @@ void CreaseRidges::find_ridges(std::span<const Vec3> coarse_m, bool rows, int fi
     if (tension > 0.0) decay = std::min(decay, std::sqrt(params_.rigidity_j / tension));
     const double kink =
         std::min(kMostKink, std::max(0.0, angle - shown) / (1.0 + params_.width_m / (2.0 * decay)));
-    if (kink > 0.0) out.push_back({moment / angle, 0.5 * kink * decay, decay});
+    const double sharpen = std::clamp(2.0 * shown / angle - 1.0, 0.0, 1.0);
+    if (kink > 0.0 || sharpen > 0.0)
+      out.push_back({moment / angle, 0.5 * kink * decay, decay, sharpen});
     first = last;
   }
 }
 
-void CreaseRidges::add_family(bool rows) {
+namespace {
+
+// Half the zone a crease's shown turning is gathered from, in coarse cells:
+// the smooth surface rounds a coarse node's turning over the cells either side
+// of it, and a fold shared by two nodes over one cell more.
+constexpr double kSharpenedCells = 1.5;
+// Least turning across a crease's zone worth sharpening, rad.
+constexpr double kLeastShownTurning = 0.02;
+
+// Adds to `offsets` (weighted) the normal offsets that replace `surface` over
+// [place - half, place + half] along one fiber (nodes `node(i)`, i = 0..count-1)
+// by its two tangents at the zone's ends: each node goes to the nearer of the
+// two lines, its foot there, so the fiber turns where they meet. Where that is
+// comes from the coarse cloth's turning, which the physics puts in the crease's
+// shares either side of its line (fold_rest_angles): on the line.
+template <typename Node>
+void sharpen(const Node& node, int count, double place, double half, double weight,
+             std::span<const Vec3> surface, std::span<const Vec3> normals,
+             std::vector<double>& offsets) {
+  const int a = std::max(0, int(std::floor(place - half)));
+  const int b = std::min(count - 1, int(std::ceil(place + half)));
+  if (b - a < 3) return;
+  const Vec3 sa = surface[node(a)], sb = surface[node(b)];
+  const Vec3 ta = (surface[node(a + 1)] - sa).normalized();
+  const Vec3 tb = (sb - surface[node(b - 1)]).normalized();
+  if (std::atan2(ta.cross(tb).norm(), ta.dot(tb)) < kLeastShownTurning) return;
+  // The tangent lines sa + t ta and sb - u tb: their nearest points.
+  const Vec3 d = -tb, r = sa - sb;
+  const double bb = ta.dot(d), dd = ta.dot(r), ee = d.dot(r), det = 1.0 - bb * bb;
+  if (!(det > 1e-12)) return;
+  const double t = (bb * ee - dd) / det, u = (ee - bb * dd) / det;
+  const double reach = (sb - sa).norm();
+  if (!(t > 0.0 && u > 0.0 && t < reach && u < reach)) return;  // tangents that do not meet ahead
+  const Vec3 apex = 0.5 * ((sa + t * ta) + (sb + u * d));
+  for (int i = a + 1; i < b; ++i) {
+    const std::size_t n = node(i);
+    const Vec3& p = surface[n];
+    const Vec3 foot =
+        (p - apex).dot(ta) <= 0.0 ? sa + (p - sa).dot(ta) * ta : sb + (p - sb).dot(tb) * tb;
+    offsets[n] += weight * (foot - p).dot(normals[n]);
+  }
+}
+
+}  // namespace
+
+void CreaseRidges::add_family(bool rows, std::span<const Vec3> surface_m,
+                              std::span<const Vec3> normals) {
   // Rows' ridges lie across k, interpolated in j between coarse rows; columns' the other way.
   const int J = fine_.rows, K = fine_.cols;
   const int across_count = rows ? J : K;  // dense fibers of the family
@@ -103,6 +151,11 @@ void CreaseRidges::add_family(bool rows) {
       if (weight <= 0.0 || c >= coarse_fibers) continue;
       for (const Ridge& ridge : ridges[std::size_t(c)]) {
         const double place = ridge.place * stride_along;  // dense index along the fiber
+        const auto node = [&](int i) { return rows ? fine_.index(f, i) : fine_.index(i, f); };
+        if (ridge.sharpen > 0.0)
+          sharpen(node, along_count, place, kSharpenedCells * stride_along, weight * ridge.sharpen,
+                  surface_m, normals, offsets_);
+        if (!(ridge.height_m > 0.0)) continue;
         const double reach = kRidgeReach * ridge.decay_m / link_m;
         const int from = std::max(0, int(std::ceil(place - reach)));
         const int to = std::min(along_count - 1, int(std::floor(place + reach)));
@@ -116,14 +169,16 @@ void CreaseRidges::add_family(bool rows) {
   }
 }
 
-const std::vector<double>& CreaseRidges::offsets(std::span<const Vec3> coarse_m) {
+const std::vector<double>& CreaseRidges::offsets(std::span<const Vec3> coarse_m,
+                                                 std::span<const Vec3> surface_m,
+                                                 std::span<const Vec3> normals) {
   std::fill(offsets_.begin(), offsets_.end(), 0.0);
   for (int jc = 0; jc < grid_.coarse_rows; ++jc)
     find_ridges(coarse_m, true, jc, row_ridges_[std::size_t(jc)]);
   for (int kc = 0; kc < grid_.coarse_cols; ++kc)
     find_ridges(coarse_m, false, kc, col_ridges_[std::size_t(kc)]);
-  add_family(true);
-  add_family(false);
+  add_family(true, surface_m, normals);
+  add_family(false, surface_m, normals);
   return offsets_;
 }
 

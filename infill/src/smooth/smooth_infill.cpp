@@ -329,7 +329,7 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   const auto add_ridges = [&] {
     run_timed(times, stages_.creases, [&] {
       if (!wrinkles_) set_normals();  // else 3.5 has just set them
-      const std::vector<double>& offsets = creases_->offsets(coarse_m);
+      const std::vector<double>& offsets = creases_->offsets(coarse_m, surface_, normals_);
       for (std::size_t i = 0; i < positions_m.size(); ++i)
         if (!held_[i]) positions_m[i] += offsets[i] * normals_[i];  // the pole holds its edge
     });

@@ -28,6 +28,16 @@
 // 12 degrees of turning on the line against the cloth's median of about 1.
 // A crease keeps no side in the physics; the ridge stands on the side of the
 // dense lattice's normal (row tangent x column tangent), always the same.
+//
+// The part the coarse cloth shows, theta_c, the smooth surface rounds over the
+// coarse cells either side. It is sharpened onto the crease's own line: along
+// each dense fiber crossing it, between a coarse cell before and after the
+// line, the surface is replaced (along its normal) by its two tangents there,
+// which meet in a kink on the line turning by as much as the surface did; in
+// full where the coarse cloth shows all of the crease, not at all where it
+// shows half or less (there the turning across the line is the cloth's own
+// waves, which a flattened crease does not gather): the blend
+// clamp(2 theta_c / theta_r - 1, 0, 1).
 #include <span>
 #include <vector>
 
@@ -56,8 +66,13 @@ class CreaseRidges {
 
   /// Every dense node's offset along the surface's normal, m, for the coarse
   /// nodes `coarse_m` [Jc*Kc] (0 where no crease is): the ridges of the
-  /// rows' creases (lines along columns) plus those of the columns'.
-  const std::vector<double>& offsets(std::span<const Vec3> coarse_m);
+  /// rows' creases (lines along columns) plus those of the columns', and the
+  /// folds the coarse cloth shows sharpened onto their lines.
+  /// @param surface_m  [J*K] the dense surface the offsets are taken from (3.1)
+  /// @param normals    [J*K] its unit normals
+  const std::vector<double>& offsets(std::span<const Vec3> coarse_m,
+                                     std::span<const Vec3> surface_m,
+                                     std::span<const Vec3> normals);
 
  private:
   /// One crease line on a coarse fiber: its place (coarse node index,
@@ -66,13 +81,14 @@ class CreaseRidges {
     double place = 0.0;
     double height_m = 0.0;
     double decay_m = 0.0;
+    double sharpen = 0.0;  ///< how much of the surface's turning across it goes onto the line
   };
   /// The ridges on coarse fiber `fiber` of one family (rows: coarse row
   /// `fiber`, its creases along k), into `out` (cleared first).
   void find_ridges(std::span<const Vec3> coarse_m, bool rows, int fiber,
                    std::vector<Ridge>& out) const;
-  /// Adds the ridges of one family to offsets_.
-  void add_family(bool rows);
+  /// Adds the ridges of one family to offsets_, and its creases' sharpening.
+  void add_family(bool rows, std::span<const Vec3> surface_m, std::span<const Vec3> normals);
 
   Lattice fine_;
   CellGrid grid_;
