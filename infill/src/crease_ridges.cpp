@@ -109,7 +109,8 @@ void sharpen(const Node& node, int count, double place, double half, double weig
   const int a = std::max(0, int(std::floor(place - half)));
   const int b = std::min(count - 1, int(std::ceil(place + half)));
   if (b - a < 3) return;
-  const Vec3 sa = surface[node(a)], sb = surface[node(b)];
+  const Vec3& sa = surface[node(a)];
+  const Vec3& sb = surface[node(b)];
   const Vec3 ta = (surface[node(a + 1)] - sa).normalized();
   const Vec3 tb = (sb - surface[node(b - 1)]).normalized();
   if (std::atan2(ta.cross(tb).norm(), ta.dot(tb)) < kLeastShownTurning) return;

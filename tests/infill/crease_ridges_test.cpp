@@ -126,8 +126,8 @@ TEST(CreaseRidges, AFoldTheCoarseClothShowsIsSharpenedOntoItsLineAndNoCreaseMake
     int sharpest = 0;
     double most = 0.0, total = 0.0;
     for (int k = 1; k + 1 < 25; ++k) {
-      const Vec3 e1 = row[std::size_t(k)] - row[std::size_t(k - 1)],
-                 e2 = row[std::size_t(k + 1)] - row[std::size_t(k)];
+      const std::size_t at = std::size_t(k);
+      const Vec3 e1 = row[at] - row[at - 1], e2 = row[at + 1] - row[at];
       const double turn = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
       total += turn;
       if (turn > most) most = turn, sharpest = k;
