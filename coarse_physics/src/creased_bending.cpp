@@ -44,6 +44,15 @@ std::vector<double> initial_crease_memory(std::span<const Fold> folds, const Lat
   return memory;
 }
 
+std::unique_ptr<CreasedBending> make_creased_bending(const Scene& scene, const ClothModel& model,
+                                                     bool plain) {
+  const Material& material = model.material;
+  if (!material.creased()) return nullptr;
+  return std::make_unique<CreasedBending>(
+      model, *material.bending_rigidity_j, *material.creases, 1.0 / scene.fps,
+      initial_crease_memory(scene.flag.folds, model.lattice), plain);
+}
+
 CreasedBending::CreasedBending(const ClothModel& model, double rigidity_j, const Creases& creases,
                                double frame_s, std::vector<double> memory, bool plain)
     : triples_(bending_triples(model.lattice, rigidity_j)),
@@ -170,14 +179,13 @@ void CreasedBending::linearize(std::span<const Vec3> x_m, std::span<const Vec3>,
     const auto [a, b, c, k] = triples_[t];
     const Vec3 q = x_m[a] - 2.0 * x_m[b] + x_m[c];
     const double eps = kCreaseRounding * spacing_m_[t], rest = rest_m_[t];
-    const double r2 = q.squaredNorm() + eps * eps, r = std::sqrt(r2);
+    const double q2 = q.squaredNorm(), r2 = q2 + eps * eps, r = std::sqrt(r2);
     // (1 - c / R) across q, 1 - c eps^2 / R^3 along it (less the 1 for the crease alone).
     double across = plain_ - rest / r, along = plain_ - rest * eps * eps / (r2 * r);
     if (how == Definiteness::kProjected) {
       across = std::max(across, 0.0);
       along = std::max(along, 0.0);
     }
-    const double q2 = q.squaredNorm();
     Mat3 h = across * Mat3::Identity();
     if (q2 > 0.0) h += ((along - across) / q2) * (q * q.transpose());
     hessian_[t] = k * h;

@@ -48,19 +48,12 @@ constexpr Effect kEffects[] = {
        return model.material.bending_rigidity_j.has_value();
      },
      [](const Scene& scene, const ClothModel& model) -> TermPtr {
-       const double rigidity = *model.material.bending_rigidity_j;
-       if (const std::optional<Creases>& creases = model.material.creases)
-         return std::make_unique<CreasedBending>(
-             model, rigidity, *creases, 1.0 / scene.fps,
-             initial_crease_memory(scene.flag.folds, model.lattice));
-       return std::make_unique<BendingSprings>(model, rigidity);
+       if (TermPtr creased = make_creased_bending(scene, model)) return creased;
+       return std::make_unique<BendingSprings>(model, *model.material.bending_rigidity_j);
      },
      &TermSelection::bending},
     // Part of the bending's term (creased_bending.hpp).
-    {"creases",
-     [](const Scene&, const ClothModel& model) {
-       return model.material.bending_rigidity_j && model.material.creases;
-     },
+    {"creases", [](const Scene&, const ClothModel& model) { return model.material.creased(); },
      nullptr, nullptr},
     {"gravity", [](const Scene& scene, const ClothModel&) { return scene.gravity.has_value(); },
      [](const Scene& scene, const ClothModel& model) -> TermPtr {

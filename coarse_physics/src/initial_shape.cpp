@@ -78,7 +78,7 @@ ClothState initial_state(const Scene& scene, const ClothModel& model) {
   for (std::size_t i = 0; i < n; ++i)
     if (model.pinned[i]) state.v_m_s[i] = pin_velocity;
   // The terms' memory: the creases' rest angles (the bending term's), from the folds.
-  if (model.material.bending_rigidity_j && model.material.creases)
+  if (model.material.creased())
     state.memory = initial_crease_memory(scene.flag.folds, model.lattice);
   return state;
 }

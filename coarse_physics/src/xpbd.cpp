@@ -37,12 +37,8 @@ Xpbd::Xpbd(const Scene& scene, std::shared_ptr<const ClothModel> model)
       stable_substep_s_(0.0) {
   // With [creases], the bending stays a constraint and the creases' part of it
   // (creased_bending.hpp, plain = false) is a force with the others.
-  if (model_->material.bending_rigidity_j && model_->material.creases)
-    terms_.insert(terms_.begin(),
-                  std::make_unique<CreasedBending>(
-                      *model_, *model_->material.bending_rigidity_j, *model_->material.creases,
-                      frame_s_, initial_crease_memory(scene.flag.folds, model_->lattice),
-                      /*plain=*/false));
+  if (std::unique_ptr<CreasedBending> creases = make_creased_bending(scene, *model_, false))
+    terms_.insert(terms_.begin(), std::move(creases));
   stable_substep_s_ = explicit_stability_limit(*model_, terms_);
   substeps_ = physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
   const double propagation =

@@ -145,6 +145,7 @@ void CreaseRidges::add_family(bool rows, std::span<const Vec3> surface_m,
   const std::vector<std::vector<Ridge>>& ridges = rows ? row_ridges_ : col_ridges_;
   const int coarse_fibers = int(ridges.size());
   for (int f = 0; f < across_count; ++f) {
+    const auto node = [&](int i) { return rows ? fine_.index(f, i) : fine_.index(i, f); };
     const int below = std::min(f / stride_across, coarse_fibers - 1);
     const double t = double(f - below * stride_across) / stride_across;
     for (const int c : {below, below + 1}) {
@@ -152,7 +153,6 @@ void CreaseRidges::add_family(bool rows, std::span<const Vec3> surface_m,
       if (weight <= 0.0 || c >= coarse_fibers) continue;
       for (const Ridge& ridge : ridges[std::size_t(c)]) {
         const double place = ridge.place * stride_along;  // dense index along the fiber
-        const auto node = [&](int i) { return rows ? fine_.index(f, i) : fine_.index(i, f); };
         if (ridge.sharpen > 0.0)
           sharpen(node, along_count, place, kSharpenedCells * stride_along, weight * ridge.sharpen,
                   surface_m, normals, offsets_);
@@ -161,8 +161,7 @@ void CreaseRidges::add_family(bool rows, std::span<const Vec3> surface_m,
         const int from = std::max(0, int(std::ceil(place - reach)));
         const int to = std::min(along_count - 1, int(std::floor(place + reach)));
         for (int i = from; i <= to; ++i) {
-          const std::size_t index = rows ? fine_.index(f, i) : fine_.index(i, f);
-          offsets_[index] +=
+          offsets_[node(i)] +=
               weight * ridge.height_m * std::exp(-std::abs(i - place) * link_m / ridge.decay_m);
         }
       }

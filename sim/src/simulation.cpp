@@ -155,8 +155,7 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene, const Ma
 // with [creases]), or nullopt.
 std::optional<infill::CreaseRidgeParams> crease_ridge_params(const Scene& scene,
                                                              const Material& material) {
-  if (scene.mode != Mode::kHybrid || !material.creases || !material.bending_rigidity_j)
-    return std::nullopt;
+  if (scene.mode != Mode::kHybrid || !material.creased()) return std::nullopt;
   return infill::CreaseRidgeParams{*material.bending_rigidity_j, material.creases->width_m,
                                    material.stretch_modulus_n_m};
 }

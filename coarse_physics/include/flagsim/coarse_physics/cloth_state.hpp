@@ -28,15 +28,15 @@ struct ClothState {
 /// pinned nodes, which move with the pole.
 ClothState initial_state(const Scene& scene, const ClothModel& model);
 
-/// One output frame of `substeps` substeps of `dt_s`, the loop every stepper
-/// shares: begin_frame (above) at the frame's start, then step(dt_s) while
-/// it returns true and no stop was requested (stop_request.hpp); the time is
-/// start + (s + 1) dt after substep s, so frames land exactly on t = n / fps.
 /// The frame's start every stepper shares: the terms' memory set from the
 /// state's, their begin_frame (which may move the memory: a crease's plastic
 /// step), and the memory copied back into the state.
 void begin_frame(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state);
 
+/// One output frame of `substeps` substeps of `dt_s`, the loop every stepper
+/// shares: begin_frame (above) at the frame's start, then step(dt_s) while
+/// it returns true and no stop was requested (stop_request.hpp); the time is
+/// start + (s + 1) dt after substep s, so frames land exactly on t = n / fps.
 template <typename Step>
 void advance_substeps(const std::vector<std::unique_ptr<ForceTerm>>& terms, ClothState& state,
                       int substeps, double dt_s, Step&& step);

@@ -50,6 +50,7 @@
 // default flag with about 90). The rest and held angles are the term's
 // memory, saved and restored with the state (ClothState::memory).
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -74,6 +75,14 @@ std::vector<double> fold_rest_angles(std::span<const Fold> folds, const Lattice&
 /// The term's memory at t = 0: the rest angles of `folds` (fold_rest_angles),
 /// then the held angles (0: nothing has been held yet), rad.
 std::vector<double> initial_crease_memory(std::span<const Fold> folds, const Lattice& lattice);
+
+class CreasedBending;
+
+/// The creased bending of `model` at t = 0 (its rest angles from `scene`'s
+/// folds, frames of 1 / fps), or null when its material is not creased.
+/// @param plain  as CreasedBending's
+std::unique_ptr<CreasedBending> make_creased_bending(const Scene& scene, const ClothModel& model,
+                                                     bool plain = true);
 
 class CreasedBending final : public ForceTerm {
  public:

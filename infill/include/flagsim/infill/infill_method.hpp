@@ -53,13 +53,13 @@ class InfillMethod {
                     StageTimes* times) = 0;
   virtual FillReport last_report() const = 0;
   virtual const CellGrid& grid() const = 0;
-  /// What a fill carries into the next besides the dense positions (the
-  /// smooth solver's 3.5 offsets along the normals [J*K], m, with wrinkles);
-  /// empty when nothing is. set_memory takes what memory() gave.
   /// The coarse physics' crease rest angles (coarse bending triples'
   /// order), given before each fill with [creases]; a solver that draws no
   /// crease lines ignores them.
   virtual void set_creases(std::span<const double> /*coarse_rest_rad*/) {}
+  /// What a fill carries into the next besides the dense positions (the
+  /// smooth solver's 3.5 offsets along the normals [J*K], m, with wrinkles);
+  /// empty when nothing is. set_memory takes what memory() gave.
   virtual std::vector<double> memory() const { return {}; }
   virtual void set_memory(std::span<const double> /*memory*/) {}
 };

@@ -49,6 +49,8 @@ struct Material {
   Yarn yarn;
   /// [creases]: the bending's rest angles set and relax; nullopt: no creases.
   std::optional<Creases> creases;
+  /// Whether the physics' bending is creased: [creases] and a bending D to crease.
+  bool creased() const { return creases.has_value() && bending_rigidity_j.has_value(); }
 };
 
 /// Called with a key ("wrinkles.fiber_modulus") and what is wrong with it
