@@ -235,9 +235,6 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   const std::size_t stride = rows ? 1 : std::size_t(K);
   const double rest_m = rows ? lattice_.spacing_x_m : lattice_.spacing_y_m;
   const auto first_of = [&](int f) { return rows ? lattice_.index(f, 0) : lattice_.index(0, f); };
-  const auto band_of = [&](int f, int i) -> const LinkBand& {
-    return rows ? bands_.row(f, i) : bands_.col(i, f);
-  };
   // Which fibers have a link outside its band by more than the tolerance:
   // squared lengths against squared bounds (set up by project()), no square
   // root and no branch, row-major order for both families (a column's links
@@ -259,39 +256,57 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
     if (fiber_flag_[std::size_t(f)]) active_.push_back(f);
   *fibers_outside = int(active_.size());
   // kLanes at a time; a short last group repeats its last fiber, written once.
+  // Each lane reads its fiber through base pointers: node i of the fiber at
+  // node[l][i * stride], link i's band at band[l][i * band_stride].
+  const std::size_t band_stride = rows ? 1 : std::size_t(K);
+  const LinkBand* const bands = rows ? bands_.rows().data() : bands_.cols().data();
   for (std::size_t g = 0; g < active_.size(); g += kLanes) {
-    int lane_fiber[kLanes];
-    for (int l = 0; l < kLanes; ++l)
-      lane_fiber[l] = active_[std::min(g + std::size_t(l), active_.size() - 1)];
-    for (int i = 0; i <= links; ++i)
-      for (int l = 0; l < kLanes; ++l) {
-        const std::size_t node = first_of(lane_fiber[l]) + std::size_t(i) * stride;
-        if (!rows && i + kPrefetchNodes <= links) {  // a column's nodes are a row apart
-          const std::size_t ahead = node + std::size_t(kPrefetchNodes) * stride;
-          __builtin_prefetch(&positions_m[ahead]);
-          __builtin_prefetch(&inverse_mass_[ahead]);
-          if (i + kPrefetchNodes < links)
-            __builtin_prefetch(&band_of(lane_fiber[l], i + kPrefetchNodes));
-        }
-        const int a = i * kLanes + l;
-        x_[a] = positions_m[node].x();
-        y_[a] = positions_m[node].y();
-        z_[a] = positions_m[node].z();
-        w_[a] = inverse_mass_[node];
-        if (i < links) {
-          lower_[a] = band_of(lane_fiber[l], i).lower;
-          upper_[a] = band_of(lane_fiber[l], i).upper;
+    Vec3* node[kLanes];
+    const double* mass[kLanes];
+    const LinkBand* band[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      const int f = active_[std::min(g + std::size_t(l), active_.size() - 1)];
+      const std::size_t first = first_of(f);
+      node[l] = positions_m.data() + first;
+      mass[l] = inverse_mass_.data() + first;
+      band[l] = bands + (rows ? std::size_t(f) * std::size_t(K - 1) : std::size_t(f));
+    }
+    for (int i = 0; i <= links; ++i) {
+      const std::size_t at = std::size_t(i) * stride;
+      if (!rows && i + kPrefetchNodes <= links) {  // a column's nodes are a row apart
+        const std::size_t ahead = at + std::size_t(kPrefetchNodes) * stride;
+        for (int l = 0; l < kLanes; ++l) {
+          __builtin_prefetch(node[l] + ahead);
+          __builtin_prefetch(mass[l] + ahead);
+          if (i + kPrefetchNodes < links) __builtin_prefetch(band[l] + ahead);
         }
       }
+      for (int l = 0; l < kLanes; ++l) {
+        const int a = i * kLanes + l;
+        const Vec3& p = node[l][at];
+        x_[a] = p.x();
+        y_[a] = p.y();
+        z_[a] = p.z();
+        w_[a] = mass[l][at];
+      }
+      if (i < links)
+        for (int l = 0; l < kLanes; ++l) {
+          const LinkBand& b = band[l][std::size_t(i) * band_stride];
+          lower_[i * kLanes + l] = b.lower;
+          upper_[i * kLanes + l] = b.upper;
+        }
+    }
     int lane_steps = 0;
     step_lanes(links, rest_m, tolerance, steps, relaxation, &lane_steps);
     const int distinct = int(std::min<std::size_t>(kLanes, active_.size() - g));
     *steps_made += lane_steps;
-    for (int i = 0; i <= links; ++i)
+    for (int i = 0; i <= links; ++i) {
+      const std::size_t at = std::size_t(i) * stride;
       for (int l = 0; l < distinct; ++l) {
         const int a = i * kLanes + l;
-        positions_m[first_of(lane_fiber[l]) + std::size_t(i) * stride] = Vec3(x_[a], y_[a], z_[a]);
+        node[l][at] = Vec3(x_[a], y_[a], z_[a]);
       }
+    }
   }
   return *steps_made > steps_before;  // a fiber flagged but within tolerance after all: no move
 }
