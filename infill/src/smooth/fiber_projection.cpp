@@ -257,9 +257,8 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   *fibers_outside = int(active_.size());
   // kLanes at a time; a short last group repeats its last fiber, written once.
   // Each lane reads its fiber through base pointers: node i of the fiber at
-  // node[l][i * stride], link i's band at band[l][i * band_stride].
-  const std::size_t band_stride = rows ? 1 : std::size_t(K);
-  const LinkBand* const bands = rows ? bands_.rows().data() : bands_.cols().data();
+  // node[l][i * stride], link i's band at band[l][i * stride] (a column's
+  // links are K apart, as its nodes).
   for (std::size_t g = 0; g < active_.size(); g += kLanes) {
     Vec3* node[kLanes];
     const double* mass[kLanes];
@@ -269,7 +268,7 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
       const std::size_t first = first_of(f);
       node[l] = positions_m.data() + first;
       mass[l] = inverse_mass_.data() + first;
-      band[l] = bands + (rows ? std::size_t(f) * std::size_t(K - 1) : std::size_t(f));
+      band[l] = rows ? &bands_.row(f, 0) : &bands_.col(0, f);
     }
     for (int i = 0; i <= links; ++i) {
       const std::size_t at = std::size_t(i) * stride;
@@ -291,7 +290,7 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
       }
       if (i < links)
         for (int l = 0; l < kLanes; ++l) {
-          const LinkBand& b = band[l][std::size_t(i) * band_stride];
+          const LinkBand& b = band[l][at];
           lower_[i * kLanes + l] = b.lower;
           upper_[i * kLanes + l] = b.upper;
         }
