@@ -92,16 +92,19 @@ void FiberProjection::set_uniform_band(double band) {
   bands_.fill(LinkBand{1.0 - band, 1.0 + band});
 }
 
-// The lanes as one vector of doubles (core/lanes.hpp).
+// The lanes as vectors of doubles (core/lanes.hpp).
 using lanes::Lanes;
 using lanes::load;
 using lanes::splat;
 using lanes::store;
-static_assert(kLanes == lanes::kWidth);
+static_assert(kLanes % lanes::kWidth == 0);
 
 __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lanes(
     int links, double rest_m, double tolerance, int steps, double relaxation, int* steps_made) {
-  constexpr int L = kLanes;
+  // Node i of the group's fiber l is at [i * kLanes + l]: H vectors of V fibers
+  // each, whose arithmetic is written out side by side (`for (h ...)`) so the
+  // serial recurrences of the H vectors overlap.
+  constexpr int L = kLanes, V = lanes::kWidth, H = kLanes / lanes::kWidth;
   const Lanes zero = splat(0.0), one = splat(1.0), rest = splat(rest_m),
               inv_rest = splat(1.0 / rest_m), degenerate = splat(1e-12 * rest_m);
   double* const x = x_.data();
@@ -120,109 +123,134 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
   for (int step = 0; step < steps; ++step) {
     // Constraint values C_i = |x_{i+1} - x_i| - clamp(|.|, lower S, upper S)
     // (d = -C), link directions n_i, and each lane's worst excess.
-    Lanes worst = zero;
+    Lanes worst[H];
+    for (int h = 0; h < H; ++h) worst[h] = zero;
     for (int i = 0; i < links; ++i) {
-      const int a = i * L, b = a + L;
-      const Lanes dx = load(x + b) - load(x + a), dy = load(y + b) - load(y + a),
-                  dz = load(z + b) - load(z + a);
-      Lanes length;
-      const Lanes length2 = dx * dx + dy * dy + dz * dz;
-      for (int l = 0; l < L; ++l) length[l] = std::sqrt(length2[l]);
-      const Lanes relative = length * inv_rest;
-      const Lanes low = load(lower_.data() + a), high = load(upper_.data() + a);
-      Lanes target = relative < low ? low : relative;
-      target = target > high ? high : target;
-      const Lanes error = target - relative;
-      const Lanes magnitude = error < zero ? -error : error;
-      worst = magnitude > worst ? magnitude : worst;
-      store(d + a, error * rest);
-      // A zero-length link has no direction; any unit vector keeps the system regular.
-      const auto is_degenerate = length <= degenerate;
-      const Lanes inv = one / (is_degenerate ? one : length);
-      store(nx + a, is_degenerate ? one : dx * inv);
-      store(ny + a, is_degenerate ? zero : dy * inv);
-      store(nz + a, is_degenerate ? zero : dz * inv);
+#pragma GCC unroll 2
+      for (int h = 0; h < H; ++h) {
+        const int a = i * L + h * V, b = a + L;
+        const Lanes dx = load(x + b) - load(x + a), dy = load(y + b) - load(y + a),
+                    dz = load(z + b) - load(z + a);
+        Lanes length;
+        const Lanes length2 = dx * dx + dy * dy + dz * dz;
+        for (int l = 0; l < V; ++l) length[l] = std::sqrt(length2[l]);
+        const Lanes relative = length * inv_rest;
+        const Lanes low = load(lower_.data() + a), high = load(upper_.data() + a);
+        Lanes target = relative < low ? low : relative;
+        target = target > high ? high : target;
+        const Lanes error = target - relative;
+        const Lanes magnitude = error < zero ? -error : error;
+        worst[h] = magnitude > worst[h] ? magnitude : worst[h];
+        store(d + a, error * rest);
+        // A zero-length link has no direction; any unit vector keeps the system regular.
+        const auto is_degenerate = length <= degenerate;
+        const Lanes inv = one / (is_degenerate ? one : length);
+        store(nx + a, is_degenerate ? one : dx * inv);
+        store(ny + a, is_degenerate ? zero : dy * inv);
+        store(nz + a, is_degenerate ? zero : dz * inv);
+      }
     }
     // A lane within tolerance makes no step (its right-hand side is zeroed).
-    const auto moves = worst > splat(tolerance);
+    Lanes moving[H];
     bool any = false;
-    for (int l = 0; l < L; ++l) {
-      any = any || moves[l];
-      *steps_made += moves[l] ? 1 : 0;
+    for (int h = 0; h < H; ++h) {
+      const auto moves = worst[h] > splat(tolerance);
+      for (int l = 0; l < V; ++l) {
+        any = any || moves[l];
+        *steps_made += moves[l] ? 1 : 0;
+      }
+      moving[h] = moves ? one : zero;
     }
     if (!any) return;
-    const Lanes moving = moves ? one : zero;
     const Lanes damping = splat(kDamping);
     // (grad C) W (grad C)^T mu = -C is tridiagonal: diagonal w_i + w_{i+1},
     // off-diagonal A[i][i+1] = A[i+1][i] = -w_{i+1} (n_i . n_{i+1}). Thomas
     // algorithm, forward elimination: c' into c, d' into d. A link with both
     // ends held has nothing to solve for (diagonal 1, right-hand side 0).
-    {
-      const Lanes diag = load(w) + load(w + L) + damping;
+    for (int h = 0; h < H; ++h) {
+      const int a = h * V;
+      const Lanes diag = load(w + a) + load(w + a + L) + damping;
       const auto both_held = diag == damping;
-      store(inverse_pivot, one / (both_held ? one : diag));
-      store(d, both_held ? zero : load(d) * moving * load(inverse_pivot));
+      store(inverse_pivot + a, one / (both_held ? one : diag));
+      store(d + a, both_held ? zero : load(d + a) * moving[h] * load(inverse_pivot + a));
     }
     for (int i = 0; i + 1 < links; ++i) {
-      const int a = i * L, b = a + L;
-      const Lanes upper =
-          -load(w + b) *
-          (load(nx + a) * load(nx + b) + load(ny + a) * load(ny + b) + load(nz + a) * load(nz + b));
-      const Lanes ca = upper * load(inverse_pivot + a);
-      store(c + a, ca);
-      const Lanes diag = load(w + b) + load(w + b + L) + damping;
-      const auto both_held = diag == damping;
-      const Lanes ib = one / ((both_held ? one : diag) - upper * ca);
-      store(inverse_pivot + b, ib);
-      store(d + b, both_held ? zero : (load(d + b) * moving - upper * load(d + a)) * ib);
+#pragma GCC unroll 2
+      for (int h = 0; h < H; ++h) {
+        const int a = i * L + h * V, b = a + L;
+        const Lanes upper =
+            -load(w + b) * (load(nx + a) * load(nx + b) + load(ny + a) * load(ny + b) +
+                            load(nz + a) * load(nz + b));
+        const Lanes ca = upper * load(inverse_pivot + a);
+        store(c + a, ca);
+        const Lanes diag = load(w + b) + load(w + b + L) + damping;
+        const auto both_held = diag == damping;
+        const Lanes ib = one / ((both_held ? one : diag) - upper * ca);
+        store(inverse_pivot + b, ib);
+        store(d + b, both_held ? zero : (load(d + b) * moving[h] - upper * load(d + a)) * ib);
+      }
     }
     // Back substitution: mu_i = d'_i - c'_i mu_{i+1}, into d.
     for (int i = links - 2; i >= 0; --i) {
-      const int a = i * L;
-      store(d + a, load(d + a) - load(c + a) * load(d + a + L));
+#pragma GCC unroll 2
+      for (int h = 0; h < H; ++h) {
+        const int a = i * L + h * V;
+        store(d + a, load(d + a) - load(c + a) * load(d + a + L));
+      }
     }
     // dx_j = w_j (mu_{j-1} n_{j-1} - mu_j n_j); the ends have one link each.
     // Trust region: no node moves more than kMaxStep of the fiber's length in
     // a step. A fiber held at both ends and too short along a straight line
     // has no solution along itself (the linearised system is singular there);
     // the step is then bounded instead of unbounded.
-    Lanes largest2 = zero;
+    Lanes largest2[H];
+    for (int h = 0; h < H; ++h) largest2[h] = zero;
     for (int j = 0; j <= links; ++j) {
-      const int a = j * L, p = a - L;
-      Lanes fx = zero, fy = zero, fz = zero;
-      if (j > 0) {
-        const Lanes mu = load(d + p);
-        fx += mu * load(nx + p);
-        fy += mu * load(ny + p);
-        fz += mu * load(nz + p);
+#pragma GCC unroll 2
+      for (int h = 0; h < H; ++h) {
+        const int a = j * L + h * V, p = a - L;
+        Lanes fx = zero, fy = zero, fz = zero;
+        if (j > 0) {
+          const Lanes mu = load(d + p);
+          fx += mu * load(nx + p);
+          fy += mu * load(ny + p);
+          fz += mu * load(nz + p);
+        }
+        if (j < links) {
+          const Lanes mu = load(d + a);
+          fx -= mu * load(nx + a);
+          fy -= mu * load(ny + a);
+          fz -= mu * load(nz + a);
+        }
+        const Lanes wj = load(w + a);
+        fx *= wj;
+        fy *= wj;
+        fz *= wj;
+        store(step_x + a, fx);
+        store(step_y + a, fy);
+        store(step_z + a, fz);
+        const Lanes step2 = fx * fx + fy * fy + fz * fz;
+        largest2[h] = step2 > largest2[h] ? step2 : largest2[h];
       }
-      if (j < links) {
-        const Lanes mu = load(d + a);
-        fx -= mu * load(nx + a);
-        fy -= mu * load(ny + a);
-        fz -= mu * load(nz + a);
-      }
-      const Lanes wj = load(w + a);
-      fx *= wj;
-      fy *= wj;
-      fz *= wj;
-      store(step_x + a, fx);
-      store(step_y + a, fy);
-      store(step_z + a, fz);
-      const Lanes step2 = fx * fx + fy * fy + fz * fz;
-      largest2 = step2 > largest2 ? step2 : largest2;
     }
-    Lanes scale = splat(relaxation);
+    Lanes scale[H];
     const double limit = kMaxStep * links * rest_m;
-    for (int l = 0; l < L; ++l)
-      if (!(largest2[l] <= limit * limit))
-        scale[l] =
-            std::isfinite(largest2[l]) ? std::min(scale[l], limit / std::sqrt(largest2[l])) : 0.0;
+    for (int h = 0; h < H; ++h) {
+      scale[h] = splat(relaxation);
+      for (int l = 0; l < V; ++l)
+        if (!(largest2[h][l] <= limit * limit))
+          scale[h][l] = std::isfinite(largest2[h][l])
+                            ? std::min(scale[h][l], limit / std::sqrt(largest2[h][l]))
+                            : 0.0;
+    }
     for (int j = 0; j <= links; ++j) {
-      const int a = j * L;
-      store(x + a, load(x + a) + scale * load(step_x + a));
-      store(y + a, load(y + a) + scale * load(step_y + a));
-      store(z + a, load(z + a) + scale * load(step_z + a));
+#pragma GCC unroll 2
+      for (int h = 0; h < H; ++h) {
+        const int a = j * L + h * V;
+        store(x + a, load(x + a) + scale[h] * load(step_x + a));
+        store(y + a, load(y + a) + scale[h] * load(step_y + a));
+        store(z + a, load(z + a) + scale[h] * load(step_z + a));
+      }
     }
   }
 }

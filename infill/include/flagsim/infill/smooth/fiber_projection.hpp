@@ -91,8 +91,8 @@ inline constexpr double kMaxStep = 0.1;
 /// bands than the round before (see the header).
 inline constexpr double kUnderRelaxation = 0.7;
 
-/// Fibers solved side by side.
-inline constexpr int kLanes = 4;
+/// Fibers solved side by side: two vectors of four.
+inline constexpr int kLanes = 8;
 
 class FiberProjection {
  public:
