@@ -76,8 +76,8 @@ __attribute__((target_clones("avx2", "default"))) void flag_outside(
 FiberProjection::FiberProjection(const Lattice& fine)
     : lattice_(fine), inverse_mass_(fine.node_count(), 1.0), bands_(fine), fixed_(fine, 0) {
   const std::size_t lanes = std::size_t(std::max(fine.rows, fine.cols)) * kLanes;
-  for (std::vector<double>* buffer : {&x_, &y_, &z_, &w_, &lower_, &upper_, &nx_, &ny_, &nz_,
-                                      &diag_, &off_, &rhs_, &dx_, &dy_, &dz_})
+  for (std::vector<double>* buffer : {&x_, &y_, &z_, &w_, &lower_, &upper_, &length_, &nx_, &ny_,
+                                      &nz_, &diag_, &off_, &rhs_, &dx_, &dy_, &dz_})
     buffer->resize(lanes);
   set_uniform_band(0.0);
 }
@@ -120,9 +120,24 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
   double* const step_x = dx_.data();
   double* const step_y = dy_.data();
   double* const step_z = dz_.data();
+  double* const link_length = length_.data();
+  // Link a's direction n = (x_b - x_a) / |x_b - x_a|, in place. A zero-length
+  // link has no direction; any unit vector keeps the system regular.
+  const auto normalise = [&](int a) __attribute__((always_inline)) {
+    const Lanes length = load(link_length + a);
+    const auto is_degenerate = length <= degenerate;
+    const Lanes inv = one / (is_degenerate ? one : length);
+    store(nx + a, is_degenerate ? one : load(nx + a) * inv);
+    store(ny + a, is_degenerate ? zero : load(ny + a) * inv);
+    store(nz + a, is_degenerate ? zero : load(nz + a) * inv);
+  };
   for (int step = 0; step < steps; ++step) {
     // Constraint values C_i = |x_{i+1} - x_i| - clamp(|.|, lower S, upper S)
-    // (d = -C), link directions n_i, and each lane's worst excess.
+    // (d = -C), the links' lengths and unnormalised directions, and each
+    // lane's worst excess. The directions are normalised only if a lane moves,
+    // inside the forward elimination below (whose serial recurrence leaves the
+    // divider idle): about half of these passes find every lane within
+    // tolerance and end the fibers' steps.
     Lanes worst[H];
     for (int h = 0; h < H; ++h) worst[h] = zero;
     for (int i = 0; i < links; ++i) {
@@ -142,12 +157,10 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
         const Lanes magnitude = error < zero ? -error : error;
         worst[h] = magnitude > worst[h] ? magnitude : worst[h];
         store(d + a, error * rest);
-        // A zero-length link has no direction; any unit vector keeps the system regular.
-        const auto is_degenerate = length <= degenerate;
-        const Lanes inv = one / (is_degenerate ? one : length);
-        store(nx + a, is_degenerate ? one : dx * inv);
-        store(ny + a, is_degenerate ? zero : dy * inv);
-        store(nz + a, is_degenerate ? zero : dz * inv);
+        store(link_length + a, length);
+        store(nx + a, dx);
+        store(ny + a, dy);
+        store(nz + a, dz);
       }
     }
     // A lane within tolerance makes no step (its right-hand side is zeroed).
@@ -169,6 +182,7 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
     // ends held has nothing to solve for (diagonal 1, right-hand side 0).
     for (int h = 0; h < H; ++h) {
       const int a = h * V;
+      normalise(a);
       const Lanes diag = load(w + a) + load(w + a + L) + damping;
       const auto both_held = diag == damping;
       store(inverse_pivot + a, one / (both_held ? one : diag));
@@ -178,6 +192,7 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
 #pragma GCC unroll 2
       for (int h = 0; h < H; ++h) {
         const int a = i * L + h * V, b = a + L;
+        normalise(b);
         const Lanes upper =
             -load(w + b) * (load(nx + a) * load(nx + b) + load(ny + a) * load(ny + b) +
                             load(nz + a) * load(nz + b));

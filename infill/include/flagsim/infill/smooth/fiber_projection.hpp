@@ -136,9 +136,9 @@ class FiberProjection {
   std::vector<std::uint8_t> fiber_flag_;  ///< each fiber: a link out of bounds, in the check
   std::vector<double> row_low2_, row_high2_, col_low2_, col_high2_;  ///< bounds with tolerance, m^2
   // Lane buffers, [node or link][lane]: positions, inverse masses, bands, link
-  // directions, the tridiagonal system and the step.
-  std::vector<double> x_, y_, z_, w_, lower_, upper_, nx_, ny_, nz_, diag_, off_, rhs_, dx_, dy_,
-      dz_;
+  // lengths and directions, the tridiagonal system and the step.
+  std::vector<double> x_, y_, z_, w_, lower_, upper_, length_, nx_, ny_, nz_, diag_, off_, rhs_,
+      dx_, dy_, dz_;
 };
 
 }  // namespace flagsim::infill
