@@ -333,8 +333,7 @@ void AeroForce::add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_
     lanes::join(work_.f, forces_n);
     return;
   }
-  panels_.sample(x_m, work_.x);
-  panels_.sample(v_m_s, work_.v);
+  panels_.sample(x_m, work_.x, v_m_s, work_.v);
   for (auto& f : work_.f) std::fill(f.begin(), f.end(), 0.0);
   for (int j = 0; j + 1 < lattice_.rows; ++j) row_thirds(j);
   for (int axis = 0; axis < 3; ++axis)

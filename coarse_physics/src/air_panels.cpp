@@ -82,45 +82,59 @@ AirPanels::AirPanels(const Lattice& cloth, double panel_m)
   for (auto& h : half_) h.resize(std::size_t(cloth.rows) * std::size_t(cols));
 }
 
-void AirPanels::sample(std::span<const Vec3> cloth, std::vector<double> (&to)[3]) const {
+// The sample of `fields` cloth fields at once: their 3 `fields` coordinates
+// each pass over the weights together.
+template <int fields>
+void AirPanels::sample_fields(const std::span<const Vec3> (&cloth)[fields],
+                              std::vector<double>* const (&to)[fields]) const {
   assert(!same_);
   const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
   const std::size_t Jp = std::size_t(panels_.rows), Kp = std::size_t(panels_.cols);
-  // Along the rows (cloth columns -> panel columns), the three axes in one pass.
+  // Along the rows (cloth columns -> panel columns), every axis in one pass.
   // Each sum runs over one panel's few cloth nodes in registers: accumulating
   // into memory entry by entry chained every add through a store (measured:
   // half the wind's time on the hybrid's coarse lattice).
-  double *h0 = half_[0].data(), *h1 = half_[1].data(), *h2 = half_[2].data();
   for (std::size_t j = 0; j < J; ++j) {
-    const Vec3* row = cloth.data() + j * K;
+    const Vec3* row[fields];
+    for (int f = 0; f < fields; ++f) row[f] = cloth[f].data() + j * K;
     for (std::size_t q = 0; q < Kp; ++q) {
       const auto [first, last] = cols_.range[q];
       const double* w = cols_.table.data() + q * K;
-      double s0 = 0.0, s1 = 0.0, s2 = 0.0;
-      for (int i = first; i <= last; ++i) {
-        s0 += w[i] * row[i].x();
-        s1 += w[i] * row[i].y();
-        s2 += w[i] * row[i].z();
-      }
-      h0[j * Kp + q] = s0;
-      h1[j * Kp + q] = s1;
-      h2[j * Kp + q] = s2;
+      double s[fields][3] = {};
+      for (int i = first; i <= last; ++i)
+        for (int f = 0; f < fields; ++f) {
+          s[f][0] += w[i] * row[f][i].x();
+          s[f][1] += w[i] * row[f][i].y();
+          s[f][2] += w[i] * row[f][i].z();
+        }
+      for (int f = 0; f < fields; ++f)
+        for (int axis = 0; axis < 3; ++axis) half_[3 * f + axis][j * Kp + q] = s[f][axis];
     }
   }
   // Down the columns (cloth rows -> panel rows).
-  for (int axis = 0; axis < 3; ++axis) {
-    const double* half = half_[axis].data();
-    for (std::size_t p = 0; p < Jp; ++p) {
-      const auto [first, last] = rows_.range[p];
-      const double* w = rows_.table.data() + p * J;
-      double* out = to[axis].data() + p * Kp;
-      for (std::size_t q = 0; q < Kp; ++q) {
-        double sum = 0.0;
-        for (int j = first; j <= last; ++j) sum += w[j] * half[std::size_t(j) * Kp + q];
-        out[q] = sum;
+  for (int f = 0; f < fields; ++f)
+    for (int axis = 0; axis < 3; ++axis) {
+      const double* half = half_[3 * f + axis].data();
+      for (std::size_t p = 0; p < Jp; ++p) {
+        const auto [first, last] = rows_.range[p];
+        const double* w = rows_.table.data() + p * J;
+        double* out = to[f][axis].data() + p * Kp;
+        for (std::size_t q = 0; q < Kp; ++q) {
+          double sum = 0.0;
+          for (int j = first; j <= last; ++j) sum += w[j] * half[std::size_t(j) * Kp + q];
+          out[q] = sum;
+        }
       }
     }
-  }
+}
+
+void AirPanels::sample(std::span<const Vec3> cloth, std::vector<double> (&to)[3]) const {
+  sample_fields<1>({cloth}, {to});
+}
+
+void AirPanels::sample(std::span<const Vec3> cloth_a, std::vector<double> (&to_a)[3],
+                       std::span<const Vec3> cloth_b, std::vector<double> (&to_b)[3]) const {
+  sample_fields<2>({cloth_a, cloth_b}, {to_a, to_b});
 }
 
 void AirPanels::spread(const std::vector<double> (&from)[3], std::span<Vec3> cloth) const {

@@ -101,6 +101,30 @@ TEST(AirPanels, EachPanelNodeIsAWeightedAverageOfTheClothUnderItsHat) {
     }
 }
 
+TEST(AirPanels, TwoFieldsSampledInOnePassAreTheirOwnSamplesBitForBit) {
+  // The wind samples positions and velocities together (one pass over the
+  // weights): the same operations in the same order per field as one at a time.
+  const Lattice cloth = flag(17, 25);
+  const AirPanels panels(cloth, 0.25);
+  ASSERT_FALSE(panels.same_lattice());
+  const std::size_t n = cloth.node_count(), np = panels.lattice().node_count();
+  std::vector<Vec3> a(n), b(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    a[i] = Vec3(std::sin(0.3 * double(i)), std::cos(0.7 * double(i)), 0.01 * double(i));
+    b[i] = Vec3(std::exp(-0.01 * double(i)), -0.5 * double(i % 7), std::sin(1.3 * double(i)));
+  }
+  std::vector<double> one_a[3], one_b[3], both_a[3], both_b[3];
+  for (auto* s : {&one_a, &one_b, &both_a, &both_b})
+    for (auto& axis : *s) axis.assign(np, 0.0);
+  panels.sample(a, one_a);
+  panels.sample(b, one_b);
+  panels.sample(a, both_a, b, both_b);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_EQ(both_a[axis], one_a[axis]) << axis;
+    EXPECT_EQ(both_b[axis], one_b[axis]) << axis;
+  }
+}
+
 TEST(AirPanels, AUniformPressureOnThePanelsIsTheSameForcePerAreaOnEveryClothNode) {
   // Panel node a carries p times its own area share; spread back, every cloth
   // node gets p times its share, at every lattice (the weights' integrals are

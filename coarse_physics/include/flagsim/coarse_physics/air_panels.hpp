@@ -57,6 +57,10 @@ class AirPanels {
   /// to[axis][a] = sum_i W_ai from[i][axis]: the panel nodes' positions (or
   /// velocities) from the cloth's; `to` holds panel-node count values per axis.
   void sample(std::span<const Vec3> cloth, std::vector<double> (&to)[3]) const;
+  /// Two fields sampled in one pass over the weights (the positions and the
+  /// velocities of a substep): the same values as two sample() calls.
+  void sample(std::span<const Vec3> cloth_a, std::vector<double> (&to_a)[3],
+              std::span<const Vec3> cloth_b, std::vector<double> (&to_b)[3]) const;
   /// cloth[i] += sum_a W_ai from[axis][a]: panel-node forces onto the cloth.
   void spread(const std::vector<double> (&from)[3], std::span<Vec3> cloth) const;
   /// W_ai: cloth node i's weight in panel node a (W_ai = row_weight(pa, j) col_weight(qa, k)).
@@ -89,7 +93,12 @@ class AirPanels {
   int cloth_rows_, cloth_cols_;
   bool same_ = true;
   Axis rows_, cols_;
-  mutable std::vector<double> half_[3];  ///< [cloth rows x panel cols] between the two passes
+  template <int fields>
+  void sample_fields(const std::span<const Vec3> (&cloth)[fields],
+                     std::vector<double>* const (&to)[fields]) const;
+
+  /// [cloth rows x panel cols] between the two passes, three per field sampled at once
+  mutable std::vector<double> half_[6];
 };
 
 }  // namespace flagsim::physics
