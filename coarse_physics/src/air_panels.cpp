@@ -82,11 +82,11 @@ AirPanels::AirPanels(const Lattice& cloth, double panel_m)
   for (auto& h : half_) h.resize(std::size_t(cloth.rows) * std::size_t(cols));
 }
 
-// The sample of `fields` cloth fields at once: their 3 `fields` coordinates
+// `Fields` cloth fields sampled at once: their 3 x `Fields` coordinates
 // each pass over the weights together.
-template <int fields>
-void AirPanels::sample_fields(const std::span<const Vec3> (&cloth)[fields],
-                              std::vector<double>* const (&to)[fields]) const {
+template <int Fields>
+void AirPanels::sample_fields(const std::span<const Vec3> (&cloth)[Fields],
+                              std::vector<double>* const (&to)[Fields]) const {
   assert(!same_);
   const std::size_t J = std::size_t(cloth_rows_), K = std::size_t(cloth_cols_);
   const std::size_t Jp = std::size_t(panels_.rows), Kp = std::size_t(panels_.cols);
@@ -95,24 +95,24 @@ void AirPanels::sample_fields(const std::span<const Vec3> (&cloth)[fields],
   // into memory entry by entry chained every add through a store (measured:
   // half the wind's time on the hybrid's coarse lattice).
   for (std::size_t j = 0; j < J; ++j) {
-    const Vec3* row[fields];
-    for (int f = 0; f < fields; ++f) row[f] = cloth[f].data() + j * K;
+    const Vec3* row[Fields];
+    for (int f = 0; f < Fields; ++f) row[f] = cloth[f].data() + j * K;
     for (std::size_t q = 0; q < Kp; ++q) {
       const auto [first, last] = cols_.range[q];
       const double* w = cols_.table.data() + q * K;
-      double s[fields][3] = {};
+      double s[Fields][3] = {};
       for (int i = first; i <= last; ++i)
-        for (int f = 0; f < fields; ++f) {
+        for (int f = 0; f < Fields; ++f) {
           s[f][0] += w[i] * row[f][i].x();
           s[f][1] += w[i] * row[f][i].y();
           s[f][2] += w[i] * row[f][i].z();
         }
-      for (int f = 0; f < fields; ++f)
+      for (int f = 0; f < Fields; ++f)
         for (int axis = 0; axis < 3; ++axis) half_[3 * f + axis][j * Kp + q] = s[f][axis];
     }
   }
   // Down the columns (cloth rows -> panel rows).
-  for (int f = 0; f < fields; ++f)
+  for (int f = 0; f < Fields; ++f)
     for (int axis = 0; axis < 3; ++axis) {
       const double* half = half_[3 * f + axis].data();
       for (std::size_t p = 0; p < Jp; ++p) {

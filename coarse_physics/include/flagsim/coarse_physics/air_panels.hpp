@@ -93,9 +93,9 @@ class AirPanels {
   int cloth_rows_, cloth_cols_;
   bool same_ = true;
   Axis rows_, cols_;
-  template <int fields>
-  void sample_fields(const std::span<const Vec3> (&cloth)[fields],
-                     std::vector<double>* const (&to)[fields]) const;
+  template <int Fields>
+  void sample_fields(const std::span<const Vec3> (&cloth)[Fields],
+                     std::vector<double>* const (&to)[Fields]) const;
 
   /// [cloth rows x panel cols] between the two passes, three per field sampled at once
   mutable std::vector<double> half_[6];
