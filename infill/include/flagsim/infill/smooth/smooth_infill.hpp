@@ -119,9 +119,20 @@ inline constexpr int kLevelStride = 4;
 /// 1.14, 8 (97 x 49 from 13 x 7) 1.22 / 1.20, 9 (73 x 109, no coarser level)
 /// 1.14 / 1.16, 12 (97 x 145) 1.20 / 1.15, 14 (113 x 169) 1.20 / 1.14; but 16
 /// (the default, 129 x 193) 1.34 / 1.19 and 18 (145 x 217) 1.27 / 1.14.
+/// One cycle since 2026-12-06 (was 3; each cycle is a projection of the
+/// coarsest level, about 0.1 ms a frame on the default scene). Measured on
+/// today's physics (0.25 m air panels; worst-frame imprint, crease-line ratio
+/// median / p90 by ../shared/tools/cloth_checks.py), 0 / 1 / 3 cycles: default
+/// scene 10 s 1.17 / 1.15 / 1.14, crease lines 3.22 / 4.84, 3.15 / 4.63, 3.19 /
+/// 4.64, relief and band-edge figures unchanged (2.02 / 2.05 mm taut, 2.1%);
+/// cells of 18 (91 frames) 1.14 / 1.12 at 1 / 3 cycles, crease lines 3.59 / 5.16
+/// against 3.35 / 4.68; the storm with wrinkles at 129 x 193 (6 s) 1.33 / 1.30,
+/// crease lines 6.52 / 10.2 against 6.27 / 9.13. So the second and third cycles
+/// buy nothing on the default scene and about a tenth of the crease-line ratio
+/// on finer cells and in a storm, for 0.2 ms a frame.
 inline constexpr int kSmoothedCellLinks = 16;
 inline constexpr int kSmoothingPasses = 4;
-inline constexpr int kSmoothingCycles = 3;
+inline constexpr int kSmoothingCycles = 1;
 /// Gauss-Newton steps per fiber per round (a fiber that converges stops early).
 inline constexpr int kStepsPerFiber = 4;
 
