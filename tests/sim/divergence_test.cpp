@@ -18,6 +18,32 @@ TEST(Divergence, HealthyStatePasses) {
   EXPECT_FALSE(find_divergence(x, v, {0.01, 0.005}, Limits{}).has_value());
 }
 
+TEST(Divergence, FindsANonFiniteValueAndTheFastestNodeInTheLanesAndTheirTail) {
+  // Five vectors: 15 coordinates, four lanes of four and a tail of three.
+  std::vector<Vec3> x(5, Vec3(1, 2, 3)), v(5, Vec3(0.5, 0, 0));
+  for (int at = 0; at < 15; ++at) {
+    for (std::vector<Vec3>* field : {&x, &v}) {
+      const Vec3 kept = (*field)[std::size_t(at / 3)];
+      (*field)[std::size_t(at / 3)][at % 3] = at % 2 ? INFINITY : std::nan("");
+      const std::optional<Divergence> found = find_divergence(x, v, {}, Limits{});
+      ASSERT_TRUE(found) << at;
+      EXPECT_EQ(found->cause, field == &x ? Cause::kPositionNotFinite : Cause::kVelocityNotFinite)
+          << at;
+      (*field)[std::size_t(at / 3)] = kept;
+    }
+  }
+  Limits limits;
+  limits.max_speed_m_s = 50.0;
+  for (std::size_t fastest = 0; fastest < v.size(); ++fastest) {
+    v[fastest] = Vec3(36.0, -48.0, 0.0);  // 60 m/s
+    const std::optional<Divergence> found = find_divergence(x, v, {}, limits);
+    ASSERT_TRUE(found) << fastest;
+    EXPECT_EQ(found->cause, Cause::kSpeed);
+    EXPECT_EQ(found->value, 60.0);
+    v[fastest] = Vec3(0.5, 0, 0);
+  }
+}
+
 TEST(Divergence, NamesEachCauseWithItsNumbersAndWordsThatSayWhatToChange) {
   std::vector<Vec3> x(4, Vec3::Zero()), v(4, Vec3::Zero());
   Scene scene = parse_scene(default_scene_toml(), kDefaultSceneName, std::vector<std::string>{});
