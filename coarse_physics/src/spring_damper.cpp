@@ -50,13 +50,16 @@ void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
 }
 
 void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times) {
+  // The stages run back to back: one clock read between two (every stage is
+  // registered whenever times is given, register_stages).
+  StageLaps laps(times && !term_stage_.empty() ? times : nullptr);
   std::fill(forces_n_.begin(), forces_n_.end(), Vec3::Zero());
   for (std::size_t t = 0; t < terms_.size(); ++t) {
     const int stage = term_stage_.empty() ? -1 : term_stage_[t];
-    run_timed(times, stage, [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
+    laps.run(stage, [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
   }
   if (vortex_) {
-    run_timed(times, vortex_stage_, [&] {
+    laps.run(vortex_stage_, [&] {
       vortex_->advance_to(state.time_s);
       vortex_->add_forces(state.time_s, state.x_m, state.v_m_s, forces_n_);
       // The accelerations f / m, then with the air's inertia (Woodbury).
@@ -90,7 +93,7 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
     if (obstacles_) obstacles_->project(next_time, state.x_m, state.v_m_s, model_->pinned);
     state.time_s = next_time;
   };
-  run_timed(times, update_stage_, update);
+  laps.run(update_stage_, update);
 }
 
 void SpringDamperSolver::drive(std::vector<std::size_t> nodes, Driver where) {

@@ -52,6 +52,30 @@ class ScopedStageTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+/// Times stages that run one after another with one clock read between each
+/// two (run_timed reads the clock twice a stage): each run() adds the time
+/// since the previous one (or since construction) to its stage. Every stage
+/// run through it must be timed (stage >= 0) when timing is on: an untimed
+/// one's time would go to the next. Timing off (times null): just runs.
+class StageLaps {
+ public:
+  explicit StageLaps(StageTimes* times) : times_(times) {
+    if (times_) last_ = std::chrono::steady_clock::now();
+  }
+  template <typename Work>
+  void run(int stage, Work&& work) {
+    work();
+    if (!times_) return;
+    const auto now = std::chrono::steady_clock::now();
+    times_->add_seconds(stage, std::chrono::duration<double>(now - last_).count());
+    last_ = now;
+  }
+
+ private:
+  StageTimes* times_;
+  std::chrono::steady_clock::time_point last_;
+};
+
 /// Runs `work`, adding its wall time to `stage` when timing is on (times not
 /// null and the stage registered, stage >= 0); otherwise just runs it.
 template <typename Work>
