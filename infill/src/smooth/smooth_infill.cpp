@@ -271,10 +271,14 @@ void SmoothInfill::set_bands(std::span<const Vec3> coarse_m) {
           at(row_link_taps_[std::size_t(k)], line, 1);
   }
   for (int j = 0; j < J; ++j) {
+    // at(w, ...) with its four lines fixed for the row: one loop down k.
     const Taps w = taps_at(double(j) / rs, jc_count);
+    const double* line[4];
+    for (int t = 0; t < 4; ++t) line[t] = &along_[std::size_t(w.index[t]) * std::size_t(K - 1)];
     LinkBand* out = &bands.row(j, 0);
     for (int k = 0; k + 1 < K; ++k)
-      out[k] = band(at(w, &along_[std::size_t(k)], std::size_t(K - 1)));
+      out[k] = band(w.weight[0] * line[0][k] + w.weight[1] * line[1][k] + w.weight[2] * line[2][k] +
+                    w.weight[3] * line[3][k]);
   }
   // Column links: coarse column links lie on coarse columns kc, midpoints at jc + 1/2.
   for (int j = 0; j + 1 < J; ++j) {
