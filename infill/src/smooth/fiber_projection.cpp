@@ -282,22 +282,77 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   // squared lengths against squared bounds (set up by project()), no square
   // root and no branch, row-major order for both families (a column's links
   // are K apart), four links at a time (flag_outside).
+  //
+  // Only links that can have changed since they were last found inside are
+  // looked at again: a fiber of this family solved in its last pass is
+  // checked whole; any other was inside at that pass's check, and since then
+  // only the other family's fibers solved after it have moved its nodes (a
+  // fiber moves no node off itself): the row links beside a column solved in
+  // the last column pass, the column links beside a row solved in this
+  // round's row pass. The flags are those of checking every link. Where more
+  // than half of a line's links would be looked at, the whole line is (in
+  // lanes).
+  const int family = rows ? 0 : 1;
   const int steps_before = *steps_made;
   fiber_flag_.assign(std::size_t(fibers), check ? 0 : 1);
   const std::vector<double>& low2 = rows ? row_low2_ : col_low2_;
   const std::vector<double>& high2 = rows ? row_high2_ : col_high2_;
-  const int link_rows = rows ? J : J - 1, links_per_row = rows ? K - 1 : K;
-  for (int j = 0; j < link_rows && check; ++j) {
-    const Vec3* here = positions_m.data() + lattice_.index(j, 0);
-    const Vec3* next = rows ? here + 1 : here + K;
-    const std::size_t first = std::size_t(j) * std::size_t(links_per_row);
-    flag_outside(here, next, low2.data() + first, high2.data() + first, links_per_row, rows,
-                 rows ? &fiber_flag_[std::size_t(j)] : fiber_flag_.data());
+  const auto outside_at = [&](std::size_t node, std::size_t link) {
+    const double length2 = (positions_m[node + stride] - positions_m[node]).squaredNorm();
+    return length2 < low2[link] || length2 > high2[link];
+  };
+  if (check) {
+    // The other family's fibers solved since: which link positions of a line they touch.
+    const int positions = rows ? K - 1 : J - 1;
+    dirty_.assign(std::size_t(positions), 0);
+    for (const int moved : solved_[1 - family]) {
+      if (moved > 0) dirty_[std::size_t(moved - 1)] = 1;
+      if (moved < positions) dirty_[std::size_t(moved)] = 1;
+    }
+    dirty_list_.clear();
+    for (int at = 0; at < positions; ++at)
+      if (dirty_[std::size_t(at)]) dirty_list_.push_back(at);
+    const std::vector<int>& again = solved_[family];  // this family's fibers solved last pass
+    if (rows) {
+      const bool whole = 2 * dirty_list_.size() > std::size_t(positions);
+      std::size_t next_solved = 0;
+      for (int j = 0; j < J; ++j) {
+        const bool solved = next_solved < again.size() && again[next_solved] == j;
+        if (solved) ++next_solved;
+        const std::size_t node = lattice_.index(j, 0), first = std::size_t(j) * std::size_t(K - 1);
+        if (whole || solved) {
+          flag_outside(positions_m.data() + node, positions_m.data() + node + 1,
+                       low2.data() + first, high2.data() + first, K - 1, true,
+                       &fiber_flag_[std::size_t(j)]);
+        } else {
+          for (const int k : dirty_list_)
+            if (outside_at(node + std::size_t(k), first + std::size_t(k))) {
+              fiber_flag_[std::size_t(j)] = 1;
+              break;
+            }
+        }
+      }
+    } else {
+      const bool whole = 2 * again.size() > std::size_t(K);
+      for (int j = 0; j + 1 < J; ++j) {
+        const std::size_t node = lattice_.index(j, 0), first = std::size_t(j) * std::size_t(K);
+        if (whole || dirty_[std::size_t(j)]) {
+          flag_outside(positions_m.data() + node, positions_m.data() + node + K,
+                       low2.data() + first, high2.data() + first, K, false, fiber_flag_.data());
+        } else {
+          for (const int k : again)
+            if (!fiber_flag_[std::size_t(k)] &&
+                outside_at(node + std::size_t(k), first + std::size_t(k)))
+              fiber_flag_[std::size_t(k)] = 1;
+        }
+      }
+    }
   }
   active_.clear();
   for (int f = 0; f < fibers; ++f)
     if (fiber_flag_[std::size_t(f)]) active_.push_back(f);
   *fibers_outside = int(active_.size());
+  solved_[family] = active_;
   // kLanes at a time; a short last group repeats its last fiber, written once.
   // Each lane reads its fiber through base pointers: node i of the fiber at
   // node[l][i * stride], link i's band at band[l][i * stride] (a column's

@@ -134,6 +134,10 @@ class FiberProjection {
   LinkField<std::uint8_t> fixed_;         ///< links with both ends held
   std::vector<int> active_;               ///< fibers of the family being worked on that need a step
   std::vector<std::uint8_t> fiber_flag_;  ///< each fiber: a link out of bounds, in the check
+  /// Per family (rows, columns): the fibers its last pass solved, ascending.
+  std::vector<int> solved_[2];
+  std::vector<std::uint8_t> dirty_;  ///< the check's link positions the other family touched
+  std::vector<int> dirty_list_;      ///< the same as a list
   std::vector<double> row_low2_, row_high2_, col_low2_, col_high2_;  ///< bounds with tolerance, m^2
   // Lane buffers, [node or link][lane]: positions, inverse masses, bands, link
   // lengths and directions, the tridiagonal system and the step.
