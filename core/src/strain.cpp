@@ -27,13 +27,7 @@ __attribute__((target_clones("avx2", "default"))) void link_strains(const Vec3* 
   const Lanes rest = lanes::splat(rest_m);
   int k = 0;
   for (; k + L <= n; k += L) {
-    Lanes dx, dy, dz;
-    for (int l = 0; l < L; ++l) {
-      dx[l] = next[k + l].x() - here[k + l].x();
-      dy[l] = next[k + l].y() - here[k + l].y();
-      dz[l] = next[k + l].z() - here[k + l].z();
-    }
-    const Lanes length2 = dx * dx + dy * dy + dz * dz;
+    const Lanes length2 = lanes::squared_lengths(here + k, next + k);
     Lanes length;
     for (int l = 0; l < L; ++l) length[l] = std::sqrt(length2[l]);
     const Lanes difference = length - rest;

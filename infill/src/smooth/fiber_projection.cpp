@@ -42,13 +42,7 @@ __attribute__((target_clones("avx2", "default"))) void flag_outside(
   int k = 0;
   auto any = lanes::splat(0.0) < lanes::splat(0.0);  // all false
   for (; k + L <= n; k += L) {
-    Lanes dx, dy, dz;
-    for (int l = 0; l < L; ++l) {
-      dx[l] = next[k + l].x() - here[k + l].x();
-      dy[l] = next[k + l].y() - here[k + l].y();
-      dz[l] = next[k + l].z() - here[k + l].z();
-    }
-    const Lanes length2 = dx * dx + dy * dy + dz * dz;
+    const Lanes length2 = lanes::squared_lengths(here + k, next + k);
     const auto out = (length2 < lanes::load(low2 + k)) | (length2 > lanes::load(high2 + k));
     if (any_only) {
       any |= out;

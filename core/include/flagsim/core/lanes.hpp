@@ -39,6 +39,17 @@ static_assert(sizeof(Lanes) == kWidth * sizeof(double));
 [[gnu::always_inline]] inline Lanes splat(double value) {
   return Lanes{} + value;
 }
+/// |next[l] - here[l]|^2 for the kWidth links from here[l] to next[l]: the
+/// operations of Vec3::squaredNorm in its order, so the same bits.
+[[gnu::always_inline]] inline Lanes squared_lengths(const Vec3* here, const Vec3* next) {
+  Lanes dx, dy, dz;
+  for (int l = 0; l < kWidth; ++l) {
+    dx[l] = next[l].x() - here[l].x();
+    dy[l] = next[l].y() - here[l].y();
+    dz[l] = next[l].z() - here[l].z();
+  }
+  return dx * dx + dy * dy + dz * dz;
+}
 #pragma GCC diagnostic pop
 
 /// `from`'s x, y and z into one array each (the loops above read a coordinate
