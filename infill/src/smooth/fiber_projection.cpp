@@ -94,7 +94,8 @@ using lanes::store;
 static_assert(kLanes % lanes::kWidth == 0);
 
 __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lanes(
-    int links, double rest_m, double tolerance, int steps, double relaxation, int* steps_made) {
+    int links, int distinct, double rest_m, double tolerance, int steps, double relaxation,
+    int* steps_made) {
   // Node i of the group's fiber l is at [i * kLanes + l]: H vectors of V fibers
   // each, whose arithmetic is written out side by side (`for (h ...)`) so the
   // serial recurrences of the H vectors overlap.
@@ -164,7 +165,7 @@ __attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lan
       const auto moves = worst[h] > splat(tolerance);
       for (int l = 0; l < V; ++l) {
         any = any || moves[l];
-        *steps_made += moves[l] ? 1 : 0;
+        *steps_made += moves[l] && h * V + l < distinct ? 1 : 0;
       }
       moving[h] = moves ? one : zero;
     }
@@ -387,10 +388,8 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
           upper_[i * kLanes + l] = b.upper;
         }
     }
-    int lane_steps = 0;
-    step_lanes(links, rest_m, tolerance, steps, relaxation, &lane_steps);
     const int distinct = int(std::min<std::size_t>(kLanes, active_.size() - g));
-    *steps_made += lane_steps;
+    step_lanes(links, distinct, rest_m, tolerance, steps, relaxation, steps_made);
     for (int i = 0; i <= links; ++i) {
       const std::size_t at = std::size_t(i) * stride;
       for (int l = 0; l < distinct; ++l) {

@@ -124,9 +124,10 @@ class FiberProjection {
   /// were found outside their bands (all of them when not checked).
   bool project_family(bool rows, std::span<Vec3> positions_m, double tolerance, int steps,
                       double relaxation, int* steps_made, int* fibers_outside, bool check);
-  /// Gauss-Newton steps on the kLanes fibers gathered in the lane buffers.
-  void step_lanes(int links, double rest_m, double tolerance, int steps, double relaxation,
-                  int* steps_made);
+  /// Gauss-Newton steps on the kLanes fibers gathered in the lane buffers, the
+  /// first `distinct` of them counted into steps_made (the rest repeat the last).
+  void step_lanes(int links, int distinct, double rest_m, double tolerance, int steps,
+                  double relaxation, int* steps_made);
 
   Lattice lattice_;
   std::vector<double> inverse_mass_;  ///< [J*K]
