@@ -69,8 +69,8 @@ StrainStats link_strain(const Lattice& lattice, std::span<const Vec3> positions_
   // Row by row: the row's links, then the column links down to the next row.
   // A node's strain is the largest of its (up to four) links' (float
   // conversion is monotonic, so the max of the converted strains is the
-  // converted max). Four partial sums: the mean's last bits depend on that
-  // order, not on the lattice's.
+  // converted max). The sum in four partial sums (the mean's last bits follow
+  // their order, not for_each_link's).
   const auto count = [](int n) { return std::size_t(std::max(n, 0)); };
   std::vector<double> along(count(K - 1)), down(count(K)), above(count(K), 0.0);
   double sum[lanes::kWidth] = {};

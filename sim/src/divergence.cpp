@@ -20,6 +20,7 @@ using lanes::Lanes;
 // x, NaN for an infinite or NaN one; four coordinates at a time, no branch.
 __attribute__((target_clones("avx2", "default"))) bool all_finite(std::span<const Vec3> vectors) {
   constexpr int L = lanes::kWidth;
+  if (vectors.empty()) return true;
   const double* values = vectors.data()->data();
   const std::size_t n = 3 * vectors.size();
   const Lanes zero = lanes::splat(0.0);
