@@ -50,9 +50,8 @@ void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
 }
 
 void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times) {
-  // The stages run back to back: one clock read between two (every stage is
-  // registered whenever times is given, register_stages).
-  StageLaps laps(times && !term_stage_.empty() ? times : nullptr);
+  // The stages run back to back: one clock read between two.
+  StageLaps laps(times);
   std::fill(forces_n_.begin(), forces_n_.end(), Vec3::Zero());
   for (std::size_t t = 0; t < terms_.size(); ++t) {
     const int stage = term_stage_.empty() ? -1 : term_stage_[t];

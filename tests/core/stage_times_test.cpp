@@ -29,6 +29,16 @@ TEST(StageLaps, EachRunGetsTheTimeSinceTheRunBeforeIt) {
   EXPECT_LT(times.seconds()[second], times.seconds()[first]);
 }
 
+TEST(StageLaps, AStageNotRegisteredCountsNowhere) {
+  StageTimes times;
+  const int timed = times.add("timed");
+  StageLaps laps(&times);
+  laps.run(-1, [] { sleep_ms(20); });
+  laps.run(timed, [] { sleep_ms(5); });
+  EXPECT_GE(times.seconds()[timed], 0.005);
+  EXPECT_LT(times.seconds()[timed], 0.025);  // not also the untimed 20 ms before it
+}
+
 TEST(StageLaps, WithoutTimesItOnlyRunsTheWork) {
   int ran = 0;
   StageLaps laps(nullptr);

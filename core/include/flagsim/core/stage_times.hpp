@@ -54,9 +54,8 @@ class ScopedStageTimer {
 
 /// Times stages that run one after another with one clock read between each
 /// two (run_timed reads the clock twice a stage): each run() adds the time
-/// since the previous one (or since construction) to its stage. Every stage
-/// run through it must be timed (stage >= 0) when timing is on: an untimed
-/// one's time would go to the next. Timing off (times null): just runs.
+/// since the previous one (or since construction) to its stage; a stage < 0
+/// (not registered) counts nowhere. Timing off (times null): just runs.
 class StageLaps {
  public:
   explicit StageLaps(StageTimes* times) : times_(times) {
@@ -67,7 +66,7 @@ class StageLaps {
     work();
     if (!times_) return;
     const auto now = std::chrono::steady_clock::now();
-    times_->add_seconds(stage, std::chrono::duration<double>(now - last_).count());
+    if (stage >= 0) times_->add_seconds(stage, std::chrono::duration<double>(now - last_).count());
     last_ = now;
   }
 
