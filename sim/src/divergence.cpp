@@ -41,13 +41,7 @@ __attribute__((target_clones("avx2", "default"))) double largest_squared_norm(
   Lanes largest = lanes::splat(0.0);
   std::size_t i = 0;
   for (; i + L <= n; i += L) {
-    Lanes x, y, z;
-    for (int l = 0; l < L; ++l) {
-      x[l] = vectors[i + std::size_t(l)].x();
-      y[l] = vectors[i + std::size_t(l)].y();
-      z[l] = vectors[i + std::size_t(l)].z();
-    }
-    const Lanes norm2 = x * x + y * y + z * z;
+    const Lanes norm2 = lanes::squared_norms(vectors.data() + i);
     largest = norm2 > largest ? norm2 : largest;
   }
   double result = 0.0;

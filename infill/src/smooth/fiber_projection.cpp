@@ -292,9 +292,10 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
   fiber_flag_.assign(std::size_t(fibers), check ? 0 : 1);
   const std::vector<double>& low2 = rows ? row_low2_ : col_low2_;
   const std::vector<double>& high2 = rows ? row_high2_ : col_high2_;
-  const auto outside_at = [&](std::size_t node, std::size_t link) {
-    const double length2 = (positions_m[node + stride] - positions_m[node]).squaredNorm();
-    return length2 < low2[link] || length2 > high2[link];
+  // flag_outside of the one link from `node` (its bounds at `link`) into *flag.
+  const auto flag_link = [&](std::size_t node, std::size_t link, std::uint8_t* flag) {
+    flag_outside(positions_m.data() + node, positions_m.data() + node + stride, low2.data() + link,
+                 high2.data() + link, 1, rows, flag);
   };
   if (check) {
     // The other family's fibers solved since: which link positions of a line they touch.
@@ -320,11 +321,10 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
                        low2.data() + first, high2.data() + first, K - 1, true,
                        &fiber_flag_[std::size_t(j)]);
         } else {
-          for (const int k : dirty_list_)
-            if (outside_at(node + std::size_t(k), first + std::size_t(k))) {
-              fiber_flag_[std::size_t(j)] = 1;
-              break;
-            }
+          for (const int k : dirty_list_) {
+            flag_link(node + std::size_t(k), first + std::size_t(k), &fiber_flag_[std::size_t(j)]);
+            if (fiber_flag_[std::size_t(j)]) break;
+          }
         }
       }
     } else {
@@ -336,9 +336,9 @@ bool FiberProjection::project_family(bool rows, std::span<Vec3> positions_m, dou
                        low2.data() + first, high2.data() + first, K, false, fiber_flag_.data());
         } else {
           for (const int k : again)
-            if (!fiber_flag_[std::size_t(k)] &&
-                outside_at(node + std::size_t(k), first + std::size_t(k)))
-              fiber_flag_[std::size_t(k)] = 1;
+            if (!fiber_flag_[std::size_t(k)])
+              flag_link(node + std::size_t(k), first + std::size_t(k),
+                        &fiber_flag_[std::size_t(k)]);
         }
       }
     }

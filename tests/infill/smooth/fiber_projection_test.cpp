@@ -23,13 +23,20 @@ std::vector<Vec3> distorted(const Lattice& lattice) {
   return x;
 }
 
-TEST(FiberProjection, BringsEveryLinkIntoItsBandWithPinsHeld) {
-  const Lattice lattice = Lattice::rectangle(17, 25, 1.5, 1.0, Vec3(0, 1, 0));
+// A projection of `lattice` with its pole edge (column 0) held and every
+// link's band `band` wide around its rest length.
+FiberProjection pole_held(const Lattice& lattice, double band) {
   FiberProjection projection(lattice);
   std::vector<std::uint8_t> held(lattice.node_count(), 0);
-  for (int j = 0; j < 17; ++j) held[lattice.index(j, 0)] = 1;  // the pole edge
+  for (int j = 0; j < lattice.rows; ++j) held[lattice.index(j, 0)] = 1;
   projection.hold(held);
-  projection.set_uniform_band(0.005);
+  projection.set_uniform_band(band);
+  return projection;
+}
+
+TEST(FiberProjection, BringsEveryLinkIntoItsBandWithPinsHeld) {
+  const Lattice lattice = Lattice::rectangle(17, 25, 1.5, 1.0, Vec3(0, 1, 0));
+  FiberProjection projection = pole_held(lattice, 0.005);
   std::vector<Vec3> x = distorted(lattice);
   const std::vector<Vec3> start = x;
   EXPECT_GT(link_strain(lattice, x).max, 0.05);
@@ -48,11 +55,7 @@ TEST(FiberProjection, ChecksOnlyWhatMovedAndStillFindsEveryLinkOutside) {
   // band with the projection saying it converged (checking no partial link
   // at all fails here). Measured here by every link.
   const Lattice lattice = Lattice::rectangle(33, 97, 3.0, 1.0, Vec3::Zero());
-  FiberProjection projection(lattice);
-  std::vector<std::uint8_t> held(lattice.node_count(), 0);
-  for (int j = 0; j < 33; ++j) held[lattice.index(j, 0)] = 1;
-  projection.hold(held);
-  projection.set_uniform_band(0.001);
+  FiberProjection projection = pole_held(lattice, 0.001);
   std::vector<Vec3> x = lattice.rest_positions();
   for (int dj = -3; dj <= 3; ++dj)
     for (int dk = -3; dk <= 3; ++dk)
@@ -134,11 +137,7 @@ TEST(FiberProjection, ABandWiderThanOneLetsTheLinkStretch) {
 // of every unconverged frame to their own).
 TEST(FiberProjection, TheResidualCountsOnlyLinksItCanMove) {
   const Lattice lattice = Lattice::rectangle(5, 9, 1.0, 0.5, Vec3::Zero());
-  FiberProjection projection(lattice);
-  std::vector<std::uint8_t> held(lattice.node_count(), 0);
-  for (int j = 0; j < 5; ++j) held[lattice.index(j, 0)] = 1;
-  projection.hold(held);
-  projection.set_uniform_band(0.005);
+  FiberProjection projection = pole_held(lattice, 0.005);
   for (int j = 0; j + 1 < 5; ++j) projection.bands().col(j, 0) = {1.25, 1.3};
   std::vector<Vec3> x = lattice.rest_positions();
   x[lattice.index(2, 8)].x() += 0.2 * lattice.spacing_x_m;  // one free link, 20% long

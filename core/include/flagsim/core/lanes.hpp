@@ -39,15 +39,28 @@ static_assert(sizeof(Lanes) == kWidth * sizeof(double));
 [[gnu::always_inline]] inline Lanes splat(double value) {
   return Lanes{} + value;
 }
-/// |next[l] - here[l]|^2 for the kWidth links from here[l] to next[l]: the
-/// operations of Vec3::squaredNorm in its order, so the same bits.
-[[gnu::always_inline]] inline Lanes squared_lengths(const Vec3* here, const Vec3* next) {
-  Lanes dx, dy, dz;
+/// The x, y and z of the kWidth vectors from `v` on, one coordinate a vector.
+[[gnu::always_inline]] inline void gather(const Vec3* v, Lanes& x, Lanes& y, Lanes& z) {
   for (int l = 0; l < kWidth; ++l) {
-    dx[l] = next[l].x() - here[l].x();
-    dy[l] = next[l].y() - here[l].y();
-    dz[l] = next[l].z() - here[l].z();
+    x[l] = v[l].x();
+    y[l] = v[l].y();
+    z[l] = v[l].z();
   }
+}
+/// |v[l]|^2 for the kWidth vectors from `v` on: the operations of
+/// Vec3::squaredNorm in its order, so the same bits.
+[[gnu::always_inline]] inline Lanes squared_norms(const Vec3* v) {
+  Lanes x, y, z;
+  gather(v, x, y, z);
+  return x * x + y * y + z * z;
+}
+/// |next[l] - here[l]|^2 for the kWidth links from here[l] to next[l]: the
+/// operations of (next - here).squaredNorm() in their order, so the same bits.
+[[gnu::always_inline]] inline Lanes squared_lengths(const Vec3* here, const Vec3* next) {
+  Lanes hx, hy, hz, nx, ny, nz;
+  gather(here, hx, hy, hz);
+  gather(next, nx, ny, nz);
+  const Lanes dx = nx - hx, dy = ny - hy, dz = nz - hz;
   return dx * dx + dy * dy + dz * dz;
 }
 #pragma GCC diagnostic pop
