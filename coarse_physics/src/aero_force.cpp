@@ -232,7 +232,7 @@ struct Lanes3 {
 
 }  // namespace
 
-__attribute__((target_clones("avx2", "default"))) void AeroForce::row_thirds(int j) const {
+FLAGSIM_LANES_CLONES void AeroForce::row_thirds(int j) const {
   const std::size_t K = std::size_t(lattice_.cols), cells = K - 1;
   const std::size_t top = std::size_t(j) * K, bottom = top + K, out = std::size_t(j) * cells;
   std::size_t k = 0;
@@ -267,7 +267,7 @@ __attribute__((target_clones("avx2", "default"))) void AeroForce::row_thirds(int
   }
 }
 
-__attribute__((target_clones("avx2", "default"))) void AeroForce::gather_thirds() const {
+FLAGSIM_LANES_CLONES void AeroForce::gather_thirds() const {
   // Node (j, k) gets its triangles' thirds in the order the cells' loop
   // (row-major, upper then lower) would add them: the lower triangle of cell
   // (j-1, k-1), both of (j-1, k), both of (j, k-1), the upper of (j, k).

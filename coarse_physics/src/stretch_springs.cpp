@@ -23,8 +23,7 @@ long offset_of(const Lattice& lattice, const LinkFamily& family) {
 }
 }  // namespace
 
-__attribute__((target_clones("avx2", "default"))) void StretchSprings::family_forces(
-    int family_index) const {
+FLAGSIM_LANES_CLONES void StretchSprings::family_forces(int family_index) const {
   // for_each_link's links, row by row, kLanes first nodes at a time: f on a =
   // k (|d| - S) d / |d| (a zero-length link has no direction and gets none),
   // 0 for a first node where the family has no link.
@@ -79,7 +78,7 @@ __attribute__((target_clones("avx2", "default"))) void StretchSprings::family_fo
   }
 }
 
-__attribute__((target_clones("avx2", "default"))) void StretchSprings::sum_links() const {
+FLAGSIM_LANES_CLONES void StretchSprings::sum_links() const {
   const std::size_t n = model_.lattice.node_count();
   std::array<std::size_t, 4> offset;
   for (std::size_t family = 0; family < 4; ++family)

@@ -159,8 +159,7 @@ using lanes::Lanes;
 
 }  // namespace
 
-__attribute__((target_clones("avx2", "default"))) void Xpbd::project_links(std::size_t g,
-                                                                           double inverse_h2) {
+FLAGSIM_LANES_CLONES void Xpbd::project_links(std::size_t g, double inverse_h2) {
   using lanes::load;
   using lanes::splat;
   using lanes::store;

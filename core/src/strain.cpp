@@ -20,9 +20,8 @@ using lanes::Lanes;
 // out[k] = |(|next[k] - here[k]| - rest) / rest| for k < n: strain_of's
 // operations in its order (the squared length as Vec3::squaredNorm adds
 // it), four links at a time.
-__attribute__((target_clones("avx2", "default"))) void link_strains(const Vec3* here,
-                                                                    const Vec3* next, int n,
-                                                                    double rest_m, double* out) {
+FLAGSIM_LANES_CLONES void link_strains(const Vec3* here, const Vec3* next, int n, double rest_m,
+                                       double* out) {
   constexpr int L = lanes::kWidth;
   const Lanes rest = lanes::splat(rest_m);
   int k = 0;
@@ -40,9 +39,8 @@ __attribute__((target_clones("avx2", "default"))) void link_strains(const Vec3* 
 
 // Adds the n values to four running sums and raises the running maximum (a
 // NaN leaves the maximum, as std::max does, and makes the sum NaN).
-__attribute__((target_clones("avx2", "default"))) void accumulate(const double* values, int n,
-                                                                  double (&sum)[lanes::kWidth],
-                                                                  double& max) {
+FLAGSIM_LANES_CLONES void accumulate(const double* values, int n, double (&sum)[lanes::kWidth],
+                                     double& max) {
   constexpr int L = lanes::kWidth;
   Lanes total = lanes::load(sum), largest = lanes::splat(max);
   int k = 0;

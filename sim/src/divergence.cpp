@@ -18,7 +18,7 @@ using lanes::Lanes;
 
 // Whether every coordinate of `vectors` is finite: x * 0 is 0 for a finite
 // x, NaN for an infinite or NaN one; four coordinates at a time, no branch.
-__attribute__((target_clones("avx2", "default"))) bool all_finite(std::span<const Vec3> vectors) {
+FLAGSIM_LANES_CLONES bool all_finite(std::span<const Vec3> vectors) {
   constexpr int L = lanes::kWidth;
   if (vectors.empty()) return true;
   const double* values = vectors.data()->data();
@@ -34,8 +34,7 @@ __attribute__((target_clones("avx2", "default"))) bool all_finite(std::span<cons
 }
 
 // The largest |v|^2 (Vec3::squaredNorm's operations), four vectors at a time.
-__attribute__((target_clones("avx2", "default"))) double largest_squared_norm(
-    std::span<const Vec3> vectors) {
+FLAGSIM_LANES_CLONES double largest_squared_norm(std::span<const Vec3> vectors) {
   constexpr int L = lanes::kWidth;
   const std::size_t n = vectors.size();
   Lanes largest = lanes::splat(0.0);

@@ -34,9 +34,9 @@ double outside(double relative, const LinkBand& band) {
 // `any_only`, only outside[0], for any of them). Four links at a time; the
 // squared lengths are those of Vec3::squaredNorm (the same operations in the
 // same order), so the flags are the scalar loop's.
-__attribute__((target_clones("avx2", "default"))) void flag_outside(
-    const Vec3* here, const Vec3* next, const double* low2, const double* high2, int n,
-    bool any_only, std::uint8_t* outside) {
+FLAGSIM_LANES_CLONES void flag_outside(const Vec3* here, const Vec3* next, const double* low2,
+                                       const double* high2, int n, bool any_only,
+                                       std::uint8_t* outside) {
   using lanes::Lanes;
   constexpr int L = lanes::kWidth;
   int k = 0;
@@ -93,9 +93,9 @@ using lanes::splat;
 using lanes::store;
 static_assert(kLanes % lanes::kWidth == 0);
 
-__attribute__((target_clones("avx2", "default"))) void FiberProjection::step_lanes(
-    int links, int distinct, double rest_m, double tolerance, int steps, double relaxation,
-    int* steps_made) {
+FLAGSIM_LANES_CLONES void FiberProjection::step_lanes(int links, int distinct, double rest_m,
+                                                      double tolerance, int steps,
+                                                      double relaxation, int* steps_made) {
   // Node i of the group's fiber l is at [i * kLanes + l]: H vectors of V fibers
   // each, whose arithmetic is written out side by side (`for (h ...)`) so the
   // serial recurrences of the H vectors overlap.

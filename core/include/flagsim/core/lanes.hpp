@@ -2,9 +2,8 @@
 // Four doubles side by side, for the loops that compute many independent
 // values with the same arithmetic (fibers, triangles, links): GCC's vector
 // extension, two SSE2 registers on any x86-64, one AVX register in a function
-// cloned for AVX2 (`__attribute__((target_clones("avx2", "default")))`),
-// picked at run time. Element-wise IEEE operations only, no fused
-// multiply-add: the same bits on either path, and the same bits as the same
+// cloned for AVX2 (FLAGSIM_LANES_CLONES below), picked at run time. Element-wise IEEE operations
+// only, no fused multiply-add: the same bits on either path, and the same bits as the same
 // operations on one double at a time.
 //
 // The helpers are always inlined: left out of line, one would run the default
@@ -16,6 +15,18 @@
 #include <vector>
 
 #include "flagsim/core/vec3.hpp"
+
+// Put before a function whose loops use lanes: GCC builds it twice, for AVX2
+// and for any x86-64, and picks one at run time. Clang (the fuzz build) gets
+// the one plain build: clang 14 rejects an always-inlined helper taking or
+// returning lanes inside an AVX2 clone (err_avx_calling_convention, although
+// the call is inlined), and the arithmetic is element-wise IEEE either way, so
+// the same bits.
+#if defined(__clang__)
+#define FLAGSIM_LANES_CLONES
+#else
+#define FLAGSIM_LANES_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
 
 namespace flagsim::lanes {
 
