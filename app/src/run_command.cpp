@@ -182,8 +182,10 @@ sim::SimulationState resume_state(const Scene& scene, const data::Checkpoint& ch
         fmt::format("{}: /checkpoint names {} coarse trajectory frames, the file holds {}", file,
                     checkpoint.trajectory_frames, source.trajectory_frames()));
   const std::unique_ptr<sim::Simulation> replay = sim::make_replay(
-      scene,
-      [&source](int frame, std::vector<Vec3>& out) { out = source.coarse_trajectory(frame); });
+      scene, [&source](int frame, std::vector<Vec3>& nodes, std::vector<double>& memory) {
+        nodes = source.coarse_trajectory(frame);
+        memory = source.coarse_memory(frame);
+      });
   for (int frame = 1; frame <= checkpoint.frame; ++frame) replay->advance_frame(nullptr);
   sim::SimulationState dense = replay->state();
   state.dense_m = std::move(dense.dense_m);
@@ -237,7 +239,8 @@ class FileSink final : public sim::FrameSink {
         series_(series) {}
 
   bool take(const sim::Simulation& simulation, const sim::CheckedFrame& frame) override {
-    if (!scene_.output.dense) writer_.append_trajectory(simulation.coarse_positions());
+    if (!scene_.output.dense)
+      writer_.append_trajectory(simulation.coarse_positions(), simulation.coarse_memory());
     max_strain_ = std::max(max_strain_, frame.strain.max);
     if (frame.index % scene_.output.every != 0) return true;
     if (auto room = writer_.out_of_room()) {  // stop while the file is whole
@@ -414,10 +417,12 @@ int run_command(const RunOptions& options) {
   // lattice) nothing is written yet, later the frames so far are kept.
   InterruptGuard interrupt;
   const std::unique_ptr<sim::Simulation> simulation =
-      refining ? sim::make_replay(scene,
-                                  [&source](int frame, std::vector<Vec3>& out) {
-                                    out = source->coarse_trajectory(frame);
-                                  })
+      refining ? sim::make_replay(
+                     scene,
+                     [&source](int frame, std::vector<Vec3>& nodes, std::vector<double>& memory) {
+                       nodes = source->coarse_trajectory(frame);
+                       memory = source->coarse_memory(frame);
+                     })
                : sim::make_simulation(scene);
   if (resuming) {
     try {
@@ -438,6 +443,7 @@ int run_command(const RunOptions& options) {
   info.mode = to_string(scene.mode);
   info.fields = scene.output.fields;
   info.dense = scene.output.dense;
+  info.coarse_memory_size = simulation->coarse_memory().size();
   info.compression = scene.output.compression;
   info.effects = simulation->effects();
   info.scene_toml = scene.toml_text;

@@ -97,7 +97,8 @@ struct FrameWriter::Impl {
   h5::Handle file;
   h5::Handle time, positions, velocity, strain, max_strain, mean_strain, stage_seconds,
       wall_seconds, kinetic;
-  h5::Handle coarse_positions, trajectory;
+  h5::Handle coarse_positions, trajectory, memory;
+  std::size_t memory_size = 0;  ///< RunInfo::coarse_memory_size, when /coarse/memory is made
   std::vector<h5::Handle> series;
   std::vector<std::string> series_names;              ///< RunInfo::series' names, as `series`
   h5::Handle checkpoint;                              ///< /checkpoint, once written
@@ -251,6 +252,18 @@ bool FrameWriter::write_coarse_layout(hid_t root, const RunInfo& info) {
             "the coarse nodes the infill took at every simulated frame n (t = n / fps), "
             "output.every or not; `flag-sim refine` fills the dense frames from them"))
       return false;
+    if (info.coarse_memory_size > 0) {
+      impl_->memory_size = info.coarse_memory_size;
+      impl_->memory = make_series(coarse.get(), "memory", H5T_IEEE_F64LE,
+                                  {hsize_t(info.coarse_memory_size)}, "1", info.compression);
+      if (!impl_->memory.valid() ||
+          !h5::write_string_attribute(
+              impl_->memory.get(), "meaning",
+              "what the coarse physics remembered at every simulated frame of "
+              "/coarse/trajectory (the creases' rest and held angles, rad: ClothState::memory); "
+              "`flag-sim refine` draws the creases from it"))
+        return false;
+    }
   }
   return impl_->coarse_positions.valid() &&
          write_index_list(coarse.get(), "rows", info.coarse_rows) &&
@@ -338,15 +351,25 @@ void FrameWriter::write_frame(double time_s, const FrameFields& fields, const Fr
     throw IoError(fmt::format("{}: flushing to disk failed (disk full?)", partial_path()));
 }
 
-void FrameWriter::append_trajectory(std::span<const Vec3> coarse_m) {
+void FrameWriter::append_trajectory(std::span<const Vec3> coarse_m,
+                                    std::span<const double> memory) {
   if (!impl_->trajectory.valid() || coarse_m.size() * 3 != impl_->coarse_buffer.size())
     throw std::invalid_argument(
         fmt::format("FrameWriter::append_trajectory: {} coarse nodes for {}, in a file {} dense",
                     coarse_m.size(), impl_->coarse_buffer.size() / 3,
                     impl_->trajectory.valid() ? "not" : "that is"));
+  if (memory.size() != impl_->memory_size)
+    throw std::invalid_argument(
+        fmt::format("FrameWriter::append_trajectory: {} remembered values for the {} the file "
+                    "was made with (RunInfo::coarse_memory_size)",
+                    memory.size(), impl_->memory_size));
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
-  if (!append_row(impl_->trajectory.get(), hsize_t(trajectory_frames_), H5T_NATIVE_DOUBLE,
-                  coarse_m.front().data()))
+  const bool written =
+      append_row(impl_->trajectory.get(), hsize_t(trajectory_frames_), H5T_NATIVE_DOUBLE,
+                 coarse_m.front().data()) &&
+      (!impl_->memory.valid() || append_row(impl_->memory.get(), hsize_t(trajectory_frames_),
+                                            H5T_NATIVE_DOUBLE, memory.data()));
+  if (!written)
     throw IoError(fmt::format("{}: writing the coarse trajectory's frame {} failed (disk full?)",
                               partial_path(), trajectory_frames_));
   ++trajectory_frames_;
@@ -359,8 +382,8 @@ std::optional<std::string> FrameWriter::out_of_room() const {
                                     (impl_->strain.valid() ? 4 : 0);
   const std::uintmax_t frame_bytes =
       std::uintmax_t(lattice_.node_count()) * node_bytes + impl_->coarse_buffer.size() * 4 +
-      (impl_->trajectory.valid() ? impl_->coarse_buffer.size() * 8 : 0) + impl_->stage_count * 8 +
-      64;
+      (impl_->trajectory.valid() ? impl_->coarse_buffer.size() * 8 + impl_->memory_size * 8 : 0) +
+      impl_->stage_count * 8 + 64;
   const std::uintmax_t pending = std::uintmax_t(frames_ % flush_every_) + 1;
   const std::uintmax_t need = 2 * pending * frame_bytes + (std::uintmax_t(1) << 20);
   return no_room_for(partial_path(), need);
@@ -491,6 +514,9 @@ void FrameWriter::copy_frames(const std::string& source, int frames, int traject
   if (why.empty() && !write_failed && impl_->trajectory.valid())
     copy_rows(from.get(), "coarse/trajectory", impl_->trajectory.get(), hsize_t(trajectory_frames),
               why, write_failed);
+  if (why.empty() && !write_failed && impl_->memory.valid())
+    copy_rows(from.get(), "coarse/memory", impl_->memory.get(), hsize_t(trajectory_frames), why,
+              write_failed);
   if (write_failed)
     throw IoError(
         fmt::format("{}: copying the frames of {} failed (disk full?)", partial_path(), source));

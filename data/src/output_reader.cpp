@@ -317,6 +317,33 @@ std::vector<Vec3> OutputReader::coarse_trajectory(int frame) const {
   return coarse_frame("/coarse/trajectory", frame);
 }
 
+std::vector<double> OutputReader::coarse_memory(int frame) const {
+  const hid_t file = impl_->file.get();
+  const char* const name = "/coarse/memory";
+  if (frame < 0 || frame >= trajectory_frames_ || H5Lexists(file, "/coarse", H5P_DEFAULT) <= 0 ||
+      H5Lexists(file, name, H5P_DEFAULT) <= 0)
+    return {};
+  h5::Handle set = h5::dataset(H5Dopen2(file, name, H5P_DEFAULT));
+  h5::Handle file_space = h5::dataspace(H5Dget_space(set.get()));
+  hsize_t dims[2] = {0, 0};
+  // Two angles a bending triple, at most two triples a node.
+  const hsize_t most = 4 * hsize_t(rows_) * hsize_t(cols_);
+  if (H5Sget_simple_extent_ndims(file_space.get()) != 2 ||
+      H5Sget_simple_extent_dims(file_space.get(), dims, nullptr) < 0 ||
+      dims[0] != hsize_t(trajectory_frames_) || dims[1] == 0 || dims[1] > most)
+    throw UserError(fmt::format("{}: {} is not [{}, M] with 0 < M <= {}", path_, name,
+                                trajectory_frames_, most));
+  const hsize_t start[2] = {hsize_t(frame), 0};
+  const hsize_t count[2] = {1, dims[1]};
+  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+  h5::Handle memory = h5::dataspace(H5Screate_simple(2, count, nullptr));
+  std::vector<double> values(static_cast<std::size_t>(dims[1]));
+  if (H5Dread(set.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT,
+              values.data()) < 0)
+    throw UserError(fmt::format("{}: cannot read {} of frame {}", path_, name, frame));
+  return values;
+}
+
 std::vector<Vec3> OutputReader::coarse_frame(const char* name, int frame) const {
   const hid_t file = impl_->file.get();
   if (H5Lexists(file, "/coarse", H5P_DEFAULT) <= 0 || H5Lexists(file, name, H5P_DEFAULT) <= 0)

@@ -51,11 +51,6 @@ std::optional<std::pair<const char*, std::string>> crease_problem(const Scene& s
     return std::pair{"creases",
                      std::string("the hybrid draws its crease lines with the smooth infill; "
                                  "infill.solver = \"paper\" has none yet")};
-  if (scene.mode == Mode::kHybrid && !scene.output.dense)
-    return std::pair{"output.dense",
-                     std::string("false keeps the coarse trajectory without the creases' rest "
-                                 "angles, which the dense frames' crease lines need; leave it "
-                                 "out with [creases]")};
   return std::nullopt;
 }
 

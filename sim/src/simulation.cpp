@@ -340,7 +340,7 @@ class HybridSimulation final : public Simulation {
         paper_infill_(infill_solver_of(model_->scene()) == InfillSolverKind::kPaper) {
     dense_.hold_pins(model_->scene().flag.pin);
     make_reachable();  // frame 0: the coarse nodes where the physics starts
-    dense_.set_creases(physics_->state().memory);
+    dense_.set_creases(coarse_memory());
     dense_.fill(reachable_, 0, nullptr);
     dense_.forget_velocities();
   }
@@ -360,12 +360,16 @@ class HybridSimulation final : public Simulation {
     ++frame_;
     if (!replay_) physics_->advance_frame(times);
     run_timed(times, slack_stage_, [&] { make_reachable(); });
-    dense_.set_creases(physics_->state().memory);  // the creases' rest angles, if any
+    dense_.set_creases(coarse_memory());  // the creases' rest angles, if any
     dense_.fill(reachable_, frame_, times);
   }
   std::span<const Vec3> positions() const override { return dense_.positions(); }
   std::span<const Vec3> velocities() const override { return dense_.velocities(); }
   std::span<const Vec3> coarse_positions() const override { return reachable_; }
+  std::span<const double> coarse_memory() const override {
+    return replay_ && !replayed_memory_.empty() ? std::span<const double>(replayed_memory_)
+                                                : std::span<const double>(physics_->state().memory);
+  }
   std::pair<std::vector<int>, std::vector<int>> coarse_indices() const override {
     const infill::CellGrid& grid = dense_.solver().grid();
     std::pair<std::vector<int>, std::vector<int>> indices;
@@ -415,7 +419,8 @@ class HybridSimulation final : public Simulation {
 
   std::shared_ptr<const Model> model_;
   std::unique_ptr<physics::ClothIntegrator> physics_;  ///< on model_->physics_cloth()
-  CoarseFrames replay_;  ///< empty: the physics moves the coarse nodes
+  CoarseFrames replay_;                  ///< empty: the physics moves the coarse nodes
+  std::vector<double> replayed_memory_;  ///< the replayed frame's memory (empty: the physics')
   // Only the paper solver needs slack; with the coarse lattice equal to the
   // fine one there are no fibers to fill between coarse nodes either.
   bool needs_slack() const {
@@ -424,12 +429,16 @@ class HybridSimulation final : public Simulation {
   }
   void make_reachable() {
     if (replay_) {  // stored as the infill took them: after any slack
-      replay_(frame_, reachable_);
+      replay_(frame_, reachable_, replayed_memory_);
       if (reachable_.size() != physics_->state().x_m.size())
         throw UserError(
             fmt::format("the coarse trajectory's frame {} has {} nodes, the scene's "
                         "coarse lattice {}",
                         frame_, reachable_.size(), physics_->state().x_m.size()));
+      if (!replayed_memory_.empty() && replayed_memory_.size() != physics_->state().memory.size())
+        throw UserError(fmt::format(
+            "the coarse trajectory's frame {} remembers {} values, the scene's physics {}", frame_,
+            replayed_memory_.size(), physics_->state().memory.size()));
       return;
     }
     reachable_ = physics_->state().x_m;

@@ -46,8 +46,13 @@ TEST(Refine, GivesTheFramesOfARunThatStoredThemBitForBit) {
   // every simulated frame's coarse nodes, not only the written ones.
   const std::string wrinkles =
       fs::absolute(FLAGSIM_SOURCE_DIR "/scenes/hard/hybrid_storm_wrinkles.toml");
+  // And a flag creased in four whose creases relax within the run: the dense
+  // frames draw each frame's crease angles (/coarse/memory), not the start's.
+  const std::string creased = fs::absolute(FLAGSIM_SOURCE_DIR "/scenes/creases/folded_15ms.toml");
   const std::vector<std::vector<std::string>> scenes = {
-      {"--set", "output.every=3"}, {wrinkles, "--set", "infill.solver=\"paper\""}};
+      {"--set", "output.every=3"},
+      {wrinkles, "--set", "infill.solver=\"paper\""},
+      {creased, "--set", "creases.relax_time=0.05"}};
   for (const auto& scene : scenes) {
     SCOPED_TRACE(scene.front());
     TempDir dir;
@@ -70,6 +75,11 @@ TEST(Refine, GivesTheFramesOfARunThatStoredThemBitForBit) {
       EXPECT_FALSE(reader.dense());
       EXPECT_EQ(reader.trajectory_frames(), 10);  // every simulated frame
       EXPECT_THROW(reader.positions(0), UserError);
+      // The creases' angles of every simulated frame, and only with creases.
+      EXPECT_EQ(reader.coarse_memory(9).empty(), scene.front() != creased);
+      if (scene.front() == creased) {
+        EXPECT_NE(reader.coarse_memory(9), reader.coarse_memory(0));
+      }
     }
     const ProcessResult refined = run_in(dir, {"refine", "coarse.h5", "-o", "refined.h5", "-q"});
     ASSERT_EQ(refined.exit_code, 0) << refined.err;

@@ -35,7 +35,11 @@ std::vector<double> contents_of(const std::string& path) {
     }
     add(reader.coarse_positions(t));
   }
-  for (int t = 0; t < reader.trajectory_frames(); ++t) add(reader.coarse_trajectory(t));
+  for (int t = 0; t < reader.trajectory_frames(); ++t) {
+    add(reader.coarse_trajectory(t));
+    const std::vector<double> memory = reader.coarse_memory(t);
+    values.insert(values.end(), memory.begin(), memory.end());
+  }
   for (const char* stat : {"max_strain", "mean_strain", "kinetic_energy", "infill_converged",
                            "infill_residual", "infill_iterations", "coarse_offset"}) {
     const std::vector<double> series = reader.stat(stat);
@@ -76,6 +80,9 @@ TEST(Resume, AContinuedRunHoldsTheFramesOfAnUninterruptedOneInEveryModeAndBacken
       {"hybrid, wrinkles and gusts",
        with({FLAGSIM_SOURCE_DIR "/scenes/hard/hybrid_storm_wrinkles.toml", "--set",
              "output.dense=false"})},
+      {"hybrid, creased, coarse trajectory only (the creases' angles kept and copied)",
+       with({std::string(FLAGSIM_SOURCE_DIR) + "/scenes/creases/folded_15ms.toml", "--set",
+             "creases.relax_time=0.05", "--set", "output.dense=false"})},
       {"mass-spring", with({"--mode", "mass-spring"})},
       {"mass-spring, creased (the creases' rest angles go on)",
        with({"--mode", "mass-spring", "--set", "flag.folds=[{axis=\"col\",at=0.5,angle=2.5}]",

@@ -52,6 +52,11 @@ struct RunInfo {
   /// fields, no XDMF; /coarse/trajectory instead (append_trajectory), and the
   /// root attribute `dense` = 0.
   bool dense = true;
+  /// Values a simulated frame of the coarse physics remembers besides its
+  /// nodes (the creases' rest and held angles, ClothState::memory); with
+  /// `dense` false and a non-zero size, /coarse/memory [T, M] float64 beside
+  /// /coarse/trajectory, so that refine draws the creases the run had.
+  std::size_t coarse_memory_size = 0;
   /// Deflate level 0-9 of the per-node datasets ([output] compression; 0: none).
   int compression = 0;
 };
@@ -89,8 +94,10 @@ class FrameWriter {
   void write_frame(double time_s, const FrameFields& fields, const FrameStats& stats);
   /// Appends one simulated frame's coarse nodes [Jc*Kc] m, float64 as the infill
   /// took them, to /coarse/trajectory (files with RunInfo::dense false; every
-  /// simulated frame, also those output.every leaves out). Throws IoError.
-  void append_trajectory(std::span<const Vec3> coarse_m);
+  /// simulated frame, also those output.every leaves out), and the physics'
+  /// memory of that frame [RunInfo::coarse_memory_size] to /coarse/memory.
+  /// Throws IoError.
+  void append_trajectory(std::span<const Vec3> coarse_m, std::span<const double> memory = {});
   /// Sets the root attributes `status` and (when it has one) `status_reason`,
   /// writes the XDMF views, flushes, closes, renames the file to its final
   /// name and writes the XDMF sidecar. Throws IoError.

@@ -38,6 +38,10 @@ class OutputReader {
   /// The coarse nodes the infill took at simulated frame n, [Jc*Kc] m, float64
   /// as stored; empty past the trajectory.
   std::vector<Vec3> coarse_trajectory(int frame) const;
+  /// What the coarse physics remembered at simulated frame n (the creases'
+  /// angles, /coarse/memory); empty past the trajectory or in a file without
+  /// it (no creases, or written before it was kept).
+  std::vector<double> coarse_memory(int frame) const;
 
   std::vector<double> times_s() const;
   /// Positions of frame t, [J*K] m (stored as float32).

@@ -56,6 +56,10 @@ class Simulation {
   virtual double kinetic_energy_j() const = 0;
   /// Positions of the coarse nodes [Jc*Kc], m, in the modes that simulate them; empty otherwise.
   virtual std::span<const Vec3> coarse_positions() const { return {}; }
+  /// What the coarse physics remembers besides its nodes and velocities (the
+  /// creases' rest and held angles, ClothState::memory) as the infill took it
+  /// this frame; empty when nothing is remembered or there is no coarse physics.
+  virtual std::span<const double> coarse_memory() const { return {}; }
   /// Dense row and column index of each coarse row and column; empty with no coarse nodes.
   virtual std::pair<std::vector<int>, std::vector<int>> coarse_indices() const { return {}; }
   /// What the infill did in the last frame, in the modes that have one.
@@ -104,8 +108,11 @@ std::unique_ptr<Simulation> make_simulation(std::shared_ptr<const Model> model);
 std::unique_ptr<Simulation> make_simulation(const Scene& scene);
 
 /// Writes the coarse nodes [Jc*Kc] m the infill takes at simulated frame n
-/// (frame 0 first, then one frame at a time) into `out`.
-using CoarseFrames = std::function<void(int frame, std::vector<Vec3>& out)>;
+/// (frame 0 first, then one frame at a time) into `nodes`, and what the
+/// physics remembered then (Simulation::coarse_memory) into `memory`; an empty
+/// `memory` leaves the physics' own (its start, since a replay never steps it).
+using CoarseFrames =
+    std::function<void(int frame, std::vector<Vec3>& nodes, std::vector<double>& memory)>;
 
 /// The hybrid of `scene` with its coarse nodes read from `coarse` instead of
 /// simulated (`flag-sim refine`: the dense frames of a run that kept only its
