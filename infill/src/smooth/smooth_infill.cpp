@@ -6,6 +6,8 @@
 #include <numbers>
 #include <utility>
 
+#include "flagsim/core/lanes.hpp"
+
 namespace flagsim::infill {
 
 SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
@@ -87,6 +89,16 @@ static Upsample upsample_weights(int i, int coarse_count) {
   return u;
 }
 
+namespace {
+
+// to[i] += w * from[i] for i < n: Vec3's own operations, a coordinate at a
+// time (so the same bits), vectorised over the whole row.
+FLAGSIM_LANES_CLONES void add_scaled(double w, const double* from, std::size_t n, double* to) {
+  for (std::size_t i = 0; i < n; ++i) to[i] += w * from[i];
+}
+
+}  // namespace
+
 void SmoothInfill::add_coarser_offsets(std::span<Vec3> positions_m) {
   const Lattice& half = coarser_->lattice_;
   const int K = lattice_.cols;
@@ -103,12 +115,10 @@ void SmoothInfill::add_coarser_offsets(std::span<Vec3> positions_m) {
     }
   for (int j = 0; j < lattice_.rows; ++j) {
     const Upsample uj = upsample_weights(j, half.rows);
-    for (int a = 0; a < uj.count; ++a) {
-      const Vec3* row = &coarser_offsets_[std::size_t(uj.first + a) * std::size_t(K)];
-      Vec3* out = &positions_m[lattice_.index(j, 0)];
-      const double w = uj.weight[a];
-      for (int k = 0; k < K; ++k) out[k] += w * row[k];
-    }
+    static_assert(sizeof(Vec3) == 3 * sizeof(double));
+    for (int a = 0; a < uj.count; ++a)
+      add_scaled(uj.weight[a], coarser_offsets_[std::size_t(uj.first + a) * std::size_t(K)].data(),
+                 3 * std::size_t(K), positions_m[lattice_.index(j, 0)].data());
   }
 }
 

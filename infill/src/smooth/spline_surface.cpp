@@ -6,6 +6,11 @@
 #include <cassert>
 #include <vector>
 
+#include "flagsim/core/lanes.hpp"
+
+// Lanes are passed by value only between inlined helpers of this file (core/lanes.hpp).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace flagsim::infill {
 
 Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
@@ -72,22 +77,102 @@ Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
 }
 
 SplineSurface::SplineSurface(const Lattice& fine, const CellGrid& grid)
-    : rows_(spline_interpolation_matrix(grid.coarse_rows, fine.rows)),
-      cols_t_(spline_interpolation_matrix(grid.coarse_cols, fine.cols).transpose()),
-      coarse_(grid.coarse_rows, grid.coarse_cols),
-      half_(grid.coarse_rows, fine.cols),
-      dense_(fine.rows, fine.cols) {}
+    : rows_(fine.rows),
+      cols_(fine.cols),
+      coarse_rows_(grid.coarse_rows),
+      coarse_cols_(grid.coarse_cols),
+      row_weights_(std::size_t(fine.rows) * std::size_t(grid.coarse_rows)),
+      col_weights_(std::size_t(grid.coarse_cols) * 3 * std::size_t(fine.cols)),
+      half_(std::size_t(grid.coarse_rows) * 3 * std::size_t(fine.cols)) {
+  const Eigen::MatrixXd r = spline_interpolation_matrix(grid.coarse_rows, fine.rows);
+  const Eigen::MatrixXd c = spline_interpolation_matrix(grid.coarse_cols, fine.cols);
+  for (int j = 0; j < rows_; ++j)
+    for (int a = 0; a < coarse_rows_; ++a)
+      row_weights_[std::size_t(j) * std::size_t(coarse_rows_) + std::size_t(a)] = r(j, a);
+  for (int b = 0; b < coarse_cols_; ++b)
+    for (int k = 0; k < cols_; ++k)
+      for (int d = 0; d < 3; ++d)
+        col_weights_[(std::size_t(b) * std::size_t(cols_) + std::size_t(k)) * 3 + std::size_t(d)] =
+            c(k, b);
+}
+
+namespace {
+
+// out[i] = sum_m weight[m] * rows[m][i] for i < n, m < count (rows[m] = from +
+// m * stride), summed in order of m, four values at a time.
+FLAGSIM_LANES_CLONES void weighted_rows(const double* weight, int count, const double* from,
+                                        std::size_t stride, std::size_t n, double* out) {
+  constexpr std::size_t L = lanes::kWidth;
+  std::size_t i = 0;
+  for (; i + L <= n; i += L) {
+    lanes::Lanes sum = lanes::splat(weight[0]) * lanes::load(from + i);
+    for (int m = 1; m < count; ++m)
+      sum += lanes::splat(weight[m]) * lanes::load(from + std::size_t(m) * stride + i);
+    lanes::store(out + i, sum);
+  }
+  for (; i < n; ++i) {
+    double sum = weight[0] * from[i];
+    for (int m = 1; m < count; ++m) sum += weight[m] * from[std::size_t(m) * stride + i];
+    out[i] = sum;
+  }
+}
+
+// The three lane vectors of one period of 12 values from `w` on, times the
+// coordinates of `p` they stand for (x y z x, y z x y, z x y z).
+[[gnu::always_inline]] inline void period_terms(const double* w, const Vec3& p, lanes::Lanes& t0,
+                                                lanes::Lanes& t1, lanes::Lanes& t2) {
+  constexpr std::size_t L = lanes::kWidth;
+  const double px = p.x(), py = p.y(), pz = p.z();
+  t0 = lanes::load(w) * lanes::Lanes{px, py, pz, px};
+  t1 = lanes::load(w + L) * lanes::Lanes{py, pz, px, py};
+  t2 = lanes::load(w + 2 * L) * lanes::Lanes{pz, px, py, pz};
+}
+
+// out[3k + d] = sum_b weights[b][3k + d] * x[b][d] for 3k + d < n, b < count
+// (weights[b] = weights + b * n), summed in order of b: the coordinates of
+// the row's nodes side by side, four values at a time (the coordinate of a
+// lane repeats every 12 values).
+FLAGSIM_LANES_CLONES void weighted_nodes(const double* weights, const Vec3* x, int count,
+                                         std::size_t n, double* out) {
+  constexpr std::size_t L = lanes::kWidth;
+  constexpr std::size_t kPeriod = 3 * L;
+  std::size_t i = 0;
+  for (; i + kPeriod <= n; i += kPeriod) {
+    lanes::Lanes s0, s1, s2;
+    period_terms(weights + i, x[0], s0, s1, s2);
+    for (int b = 1; b < count; ++b) {
+      lanes::Lanes t0, t1, t2;
+      period_terms(weights + std::size_t(b) * n + i, x[b], t0, t1, t2);
+      s0 += t0, s1 += t1, s2 += t2;
+    }
+    lanes::store(out + i, s0);
+    lanes::store(out + i + L, s1);
+    lanes::store(out + i + 2 * L, s2);
+  }
+  for (; i < n; ++i) {
+    const std::size_t d = i % 3;
+    double sum = weights[i] * x[0][int(d)];
+    for (int b = 1; b < count; ++b) sum += weights[std::size_t(b) * n + i] * x[b][int(d)];
+    out[i] = sum;
+  }
+}
+
+}  // namespace
 
 void SplineSurface::evaluate(std::span<const Vec3> coarse_m, std::span<Vec3> dense_m) {
-  assert(coarse_m.size() == std::size_t(coarse_.size()) &&
-         dense_m.size() == std::size_t(dense_.size()));
-  for (int d = 0; d < 3; ++d) {
-    for (Eigen::Index i = 0; i < coarse_.size(); ++i)
-      coarse_.data()[i] = coarse_m[std::size_t(i)][d];
-    half_.noalias() = coarse_ * cols_t_;
-    dense_.noalias() = rows_ * half_;
-    for (Eigen::Index i = 0; i < dense_.size(); ++i) dense_m[std::size_t(i)][d] = dense_.data()[i];
-  }
+  assert(coarse_m.size() == std::size_t(coarse_rows_) * std::size_t(coarse_cols_) &&
+         dense_m.size() == std::size_t(rows_) * std::size_t(cols_));
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  const std::size_t row_values = 3 * std::size_t(cols_);
+  // X C^T: coarse row a's curve along the dense columns, xyz side by side.
+  for (int a = 0; a < coarse_rows_; ++a)
+    weighted_nodes(col_weights_.data(), &coarse_m[std::size_t(a) * std::size_t(coarse_cols_)],
+                   coarse_cols_, row_values, half_.data() + std::size_t(a) * row_values);
+  // R (X C^T): every dense row, written in place as its nodes' xyz.
+  double* const dense = dense_m.front().data();
+  for (int j = 0; j < rows_; ++j)
+    weighted_rows(row_weights_.data() + std::size_t(j) * std::size_t(coarse_rows_), coarse_rows_,
+                  half_.data(), row_values, row_values, dense + std::size_t(j) * row_values);
 }
 
 }  // namespace flagsim::infill

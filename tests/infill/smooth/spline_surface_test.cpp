@@ -5,6 +5,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -104,6 +105,37 @@ TEST(SplineSurface, IsTheTensorProductAndCarriesAPlaneExactly) {
   for (int j = 0; j < 17; ++j)
     for (int k = 0; k < 25; ++k)
       EXPECT_LT((dense[fine.index(j, k)] - plane(fine.rest_position(j, k))).norm(), 1e-9);
+}
+
+// evaluate() is the tensor product R X C^T of the two matrices, whatever the
+// coarse nodes (random ones here), on an odd number of dense columns (the
+// last values of a row outside the four-wide passes), and a dense node on a
+// coarse node is that node to the bit.
+TEST(SplineSurface, EvaluatesTheTensorProductAndPassesThroughTheCoarseNodes) {
+  const Lattice fine = Lattice::rectangle(33, 49, 1.5, 1.0, Vec3(0, 2, 0));
+  const CellGrid grid = CellGrid::of(fine, 9, 13);
+  SplineSurface surface(fine, grid);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<Vec3> coarse(grid.coarse_count()), dense(fine.node_count());
+  for (Vec3& p : coarse) p = Vec3(value(random), value(random), value(random));
+  surface.evaluate(coarse, dense);
+  const Eigen::MatrixXd r = spline_interpolation_matrix(9, 33);
+  const Eigen::MatrixXd c = spline_interpolation_matrix(13, 49);
+  for (int d = 0; d < 3; ++d) {
+    Eigen::MatrixXd x(9, 13);
+    for (int a = 0; a < 9; ++a)
+      for (int b = 0; b < 13; ++b) x(a, b) = coarse[grid.coarse_index(a, b)][d];
+    const Eigen::MatrixXd expected = r * x * c.transpose();
+    double worst = 0.0;
+    for (int j = 0; j < 33; ++j)
+      for (int k = 0; k < 49; ++k)
+        worst = std::max(worst, std::abs(dense[fine.index(j, k)][d] - expected(j, k)));
+    EXPECT_LT(worst, 1e-13) << "coordinate " << d;  // rounding of sums of 9 x 13 terms
+  }
+  for (int a = 0; a < 9; ++a)
+    for (int b = 0; b < 13; ++b)
+      EXPECT_EQ(dense[fine.index(4 * a, 4 * b)], coarse[grid.coarse_index(a, b)]);
 }
 
 // The largest lattice a flag carries from 13 coarse columns (stride 64): a

@@ -21,9 +21,14 @@
 // 1.72, degree 7 (fourth) 1.03 / 1.48, for 15% more projection work than the
 // quintic (its overshoots are larger).
 // The surface is linear in the coarse nodes: dense_d = R X_d C^T for each
-// coordinate d, with R [J x Jc] and C [K x Kc] built once.
+// coordinate d, with R [J x Jc] and C [K x Kc] built once. Evaluated as two
+// passes of scaled row sums on the xyz of a row side by side (the dense
+// output's own layout), four at a time (core/lanes.hpp): each dense value is
+// sum_a R_ja (sum_b C_kb X_ab) summed in order of a and b, the same bits on
+// every machine; a dense node on a coarse node is that node exactly.
 #include <Eigen/Core>
 #include <span>
+#include <vector>
 
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/infill/cell_grid.hpp"
@@ -49,10 +54,11 @@ class SplineSurface {
   void evaluate(std::span<const Vec3> coarse_m, std::span<Vec3> dense_m);
 
  private:
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  Eigen::MatrixXd rows_;            ///< R [J x Jc]
-  RowMajor cols_t_;                 ///< C^T [Kc x K]
-  RowMajor coarse_, half_, dense_;  ///< work buffers: X_d [Jc x Kc], X_d C^T, R X_d C^T
+  int rows_ = 0, cols_ = 0, coarse_rows_ = 0, coarse_cols_ = 0;  ///< J, K, Jc, Kc
+  std::vector<double> row_weights_;                              ///< R [J x Jc] row-major
+  /// C^T with each column weight three times over [Kc x 3K]: C_kb at 3k + d.
+  std::vector<double> col_weights_;
+  std::vector<double> half_;  ///< X C^T [Jc x 3K]: coarse row a's curve along the dense columns
 };
 
 }  // namespace flagsim::infill
