@@ -34,6 +34,9 @@ Definitions (the same as /work/shared/tools/cloth_checks.py `flaglaws`, so the f
   lambda_L_zc, c_U_zc  the same at f_zc (JSON only; a note when lambda differs by > 15%):
                 an irregular flap can add zero crossings that move f_zc off the spectral
                 peak, and the phase at a frequency with little energy is noise.
+  lambda_L_near, lambda_L_far  the same slope over 0.2-0.6 L (the half by the pole) and over
+                0.5-1.0 L (by the fly end), at f_fft (shown by `one`, in JSON): where along
+                the flag a wavelength changes (2026-12-07: with the lattice, by the pole).
   A/L           (95th - 5th percentile) of the fly-end signal / L.
   St            f A / U.
   envelope      per-node std over time of z, resampled onto a 17 x 25 grid of normalised
@@ -189,7 +192,8 @@ def measure(rec):
     out = {"path": rec.get("path", "?"), "status": rec["status"], "notes": []}
     nan = float("nan")
     for k in ("f", "f_zc", "f_fft", "lambda_L", "c_U", "A_L", "St", "ms_frame", "U", "L",
-              "lambda_L_fft", "c_U_fft", "lambda_L_zc", "c_U_zc"):
+              "lambda_L_fft", "c_U_fft", "lambda_L_zc", "c_U_zc", "lambda_L_near",
+              "lambda_L_far"):
         out[k] = nan
     out.update(f_agree=None, crossings=0, frames=int(len(rec["t"])),
                envelope=None, mean_shape=None)
@@ -234,17 +238,21 @@ def measure(rec):
     out.update(lambda_L_zc=lam_zc / L, c_U_zc=c_zc / U)
     lam, c = wave(t, z, x, L, f_fft) if math.isfinite(f_fft) else (lam_zc, c_zc)
     out.update(lambda_L=lam / L, c_U=c / U, lambda_L_fft=lam / L, c_U_fft=c / U)
+    f_phase = f_fft if math.isfinite(f_fft) else f_zc
+    out["lambda_L_near"] = wave(t, z, x, L, f_phase, 0.2, 0.6)[0] / L
+    out["lambda_L_far"] = wave(t, z, x, L, f_phase, 0.5, 1.0)[0] / L
     if abs(lam - lam_zc) > 0.15 * abs(lam):
         out["notes"].append(f"lambda/L hangs on f: {lam_zc / L:.2f} at f_zc, {lam / L:.2f} at "
                             f"f_fft (the latter kept)")
     return out
 
 
-def wave(t, z, x, L, f):
+def wave(t, z, x, L, f, lo=0.2, hi=1.0):
     """(lambda, c) of the row z [frames, K] at frequency f: the phase slope of its complex
-    demodulation over x >= 0.2 L; c > 0 when the waves run toward larger x (the fly end)."""
+    demodulation over lo L <= x <= hi L; c > 0 when the waves run toward larger x (the fly
+    end)."""
     Z = demodulate(t, z, f)
-    sel = x >= 0.2 * L
+    sel = (x >= lo * L) & (x <= hi * L)
     slope = np.polyfit(x[sel], np.unwrap(np.angle(Z[sel])), 1)[0]
     lam = 2 * np.pi / abs(slope) if slope else float("inf")
     return lam, f * lam * (1 if slope < 0 else -1)
@@ -351,7 +359,9 @@ def one_line(m):
     agree = "agree" if m["f_agree"] else ("DISAGREE" if m["f_agree"] is False else "-")
     s = (f"{m['path']}  status {m['status']}  f {_fmt(m['f'])} Hz (zc {_fmt(m['f_zc'])}, "
          f"{m['crossings']} crossings; fft {_fmt(m['f_fft'])}: {agree})  "
-         f"lambda/L {_fmt(m['lambda_L'])}  c/U {_fmt(m['c_U'])}  A/L {_fmt(m['A_L'])}  "
+         f"lambda/L {_fmt(m['lambda_L'])} (by the pole {_fmt(m['lambda_L_near'], '{:.2f}')}, "
+         f"by the fly end {_fmt(m['lambda_L_far'], '{:.2f}')})  "
+         f"c/U {_fmt(m['c_U'])}  A/L {_fmt(m['A_L'])}  "
          f"St {_fmt(m['St'])}  ms/frame {_fmt(m['ms_frame'], '{:.2f}')}")
     if m["notes"]:
         s += "  [" + "; ".join(m["notes"]) + "]"
@@ -471,6 +481,8 @@ def selftest():
         check("f_zc", m["f_zc"], f)
         check("f_fft", m["f_fft"], f)
         check("lambda/L", m["lambda_L"], lam_L)
+        check("near", m["lambda_L_near"], lam_L, 0.05)  # half the length, a noisier slope
+        check("far", m["lambda_L_far"], lam_L, 0.05)
         check("c/U", m["c_U"], direction * c_U)
         check("A/L", m["A_L"], A_L)   # p95 - p5 of a sine is 0.988 x its peak-to-peak
         check("St", m["St"], St)
