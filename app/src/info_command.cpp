@@ -24,8 +24,9 @@ struct RunSummary {
   std::string file, status, reason, mode, effects, version;
   long long seed = 0;
   int rows = 0, cols = 0, frames = 0;
-  bool dense = true;          ///< false: output.dense = false, the coarse trajectory only
-  int trajectory_frames = 0;  ///< simulated frames in /coarse/trajectory
+  bool dense = true;           ///< false: output.dense = false, the coarse trajectory only
+  int trajectory_frames = 0;   ///< simulated frames in /coarse/trajectory
+  bool crease_angles = false;  ///< /coarse/memory beside it ([creases])
   double t_first_s = 0.0, t_last_s = 0.0;
   double substeps = 0.0, substep_s = 0.0, stable_substep_s = 0.0;
   bool has_strain = false;
@@ -62,6 +63,7 @@ RunSummary summarise(const std::string& path) {
   s.frames = reader.frame_count();
   s.dense = reader.dense();
   s.trajectory_frames = reader.trajectory_frames();
+  s.crease_angles = !reader.coarse_memory(0).empty();
   try {  // a damaged checkpoint leaves the frames readable: said below, not an error here
     if (const std::optional<data::Checkpoint> checkpoint = reader.checkpoint())
       s.checkpoint_frame = checkpoint->frame;
@@ -139,8 +141,9 @@ std::string text_of(const RunSummary& s) {
   if (!s.dense)
     fmt::format_to(out,
                    "stored    the coarse trajectory only (output.dense = false, {} simulated "
-                   "frames); `flag-sim refine {} -o DENSE.h5` recomputes the dense frames\n",
-                   s.trajectory_frames, s.file);
+                   "frames{}); `flag-sim refine {} -o DENSE.h5` recomputes the dense frames\n",
+                   s.trajectory_frames, s.crease_angles ? ", with each one's crease angles" : "",
+                   s.file);
   fmt::format_to(out, "effects   {}\n", s.effects);
   fmt::format_to(out, "seed      {}\n", s.seed);
   fmt::format_to(out, "version   {}\n", s.version);

@@ -81,6 +81,10 @@ TEST(Refine, GivesTheFramesOfARunThatStoredThemBitForBit) {
         EXPECT_NE(reader.coarse_memory(9), reader.coarse_memory(0));
       }
     }
+    const ProcessResult info = run_in(dir, {"info", "coarse.h5"});
+    EXPECT_EQ(info.out.find("with each one's crease angles") != std::string::npos,
+              scene.front() == creased)
+        << info.out;
     const ProcessResult refined = run_in(dir, {"refine", "coarse.h5", "-o", "refined.h5", "-q"});
     ASSERT_EQ(refined.exit_code, 0) << refined.err;
     EXPECT_NE(refined.out.find("refined: "), std::string::npos) << refined.out;
