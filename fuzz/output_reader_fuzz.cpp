@@ -64,12 +64,16 @@ std::string write_file(FuzzedDataProvider& in) {
   h5::write_double_attribute(root, "fps", in.ConsumeFloatingPoint<double>());
   h5::write_int_attribute(root, "seed", in.ConsumeIntegral<long long>());
   h5::write_string_attribute(root, "scene", in.ConsumeRandomLengthString(256));
+  // A coarse-trajectory file ([output] dense = false) when dense is 0 and there is no
+  // /frames/positions.
+  if (in.ConsumeBool()) h5::write_double_attribute(root, "dense", in.ConsumeBool() ? 0.0 : 1.0);
   for (const char* group : {"/frames", "/lattice", "/coarse", "/stats"})
     if (in.ConsumeBool())
       h5::Handle(H5Gcreate2(root, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  for (const char* set : {"/frames/positions", "/frames/time", "/frames/velocity", "/frames/strain",
-                          "/lattice/rest_positions", "/coarse/positions", "/coarse/rows",
-                          "/coarse/cols", "/stats/max_strain", "/stats/stage_seconds"})
+  for (const char* set :
+       {"/frames/positions", "/frames/time", "/frames/velocity", "/frames/strain",
+        "/lattice/rest_positions", "/coarse/positions", "/coarse/rows", "/coarse/cols",
+        "/coarse/trajectory", "/coarse/memory", "/stats/max_strain", "/stats/stage_seconds"})
     add_dataset(in, root, set);
   if (H5Lexists(root, "/stats", H5P_DEFAULT) > 0 &&
       H5Lexists(root, "/stats/stage_seconds", H5P_DEFAULT) > 0) {
@@ -113,6 +117,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
       }
       reader.coarse_positions(t);
+    }
+    for (int t : {-1, 0, 1, reader.trajectory_frames() - 1, reader.trajectory_frames()}) {
+      try {
+        reader.coarse_trajectory(t);
+      } catch (const flagsim::UserError&) {
+      }
+      try {
+        reader.coarse_memory(t);
+      } catch (const flagsim::UserError&) {
+      }
     }
   } catch (const flagsim::UserError&) {
   }
