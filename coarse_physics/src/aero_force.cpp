@@ -96,6 +96,27 @@ AeroForce::AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t se
   panel_v_.resize(nodes);
   panel_out_.resize(nodes);
   cell_scale_.assign(cells, 1.0);
+  // wind.lift_at_pole false: no lift on the cells whose rest rectangle holds a
+  // held cloth node (at the pole: the column of panels that straddles it).
+  cell_lift_.assign(cells, wind.lift);
+  if (!wind.lift_at_pole) {
+    const int Kp = lattice_.cols;
+    for (int j = 0; j + 1 < lattice_.rows; ++j)
+      for (int k = 0; k + 1 < Kp; ++k) {
+        const Vec3 a = lattice_.rest_position(j, k), b = lattice_.rest_position(j + 1, k + 1);
+        const Vec3 low = a.cwiseMin(b), high = a.cwiseMax(b);
+        const double slack = 1e-9 * (high - low).norm();
+        for (std::size_t i = 0; i < model.pinned.size(); ++i) {
+          if (!model.pinned[i]) continue;
+          const Vec3 p =
+              model.lattice.rest_position(int(i) / model.lattice.cols, int(i) % model.lattice.cols);
+          if (((p.array() >= low.array() - slack) && (p.array() <= high.array() + slack)).all()) {
+            cell_lift_[std::size_t(j) * std::size_t(Kp - 1) + std::size_t(k)] = 0.0;
+            break;
+          }
+        }
+      }
+  }
   if (!panels_.same_lattice()) {
     const std::vector<Vec3> rest = model.lattice.rest_positions();
     const std::span<const Vec3> sampled = on_panels(rest, panel_x_);
@@ -194,7 +215,7 @@ struct Lanes3 {
                                                     const std::vector<double> (&air)[3],
                                                     const std::vector<double> (&v)[3],
                                                     std::size_t n0, std::size_t n1, std::size_t n2,
-                                                    const Wind& wind) {
+                                                    const Wind& wind, Lanes lift) {
   const Lanes zero = splat(0.0), one = splat(1.0), third = splat(kThird);
   const Lanes3 u = {mean_relative(air[0], v[0], n0, n1, n2),
                     mean_relative(air[1], v[1], n0, n1, n2),
@@ -220,10 +241,10 @@ struct Lanes3 {
   const Lanes quarter_rho = splat(0.25 * wind.air_density_kg_m3);
   const Lanes abs_u_dot_c = u_dot_c < zero ? -u_dot_c : u_dot_c;
   const Lanes friction = quarter_rho * splat(wind.friction) * tangential;
-  const Lanes along_c = quarter_rho * u_dot_c * inv_c_norm2 *
-                            (splat(wind.drag) * abs_u_dot_c + splat(wind.lift) * r) -
-                        friction * u_dot_c * inv_c_norm2;
-  const Lanes along_u = quarter_rho * splat(wind.lift) * u_dot_c * u_dot_c / safe_r - friction;
+  const Lanes along_c =
+      quarter_rho * u_dot_c * inv_c_norm2 * (splat(wind.drag) * abs_u_dot_c + lift * r) -
+      friction * u_dot_c * inv_c_norm2;
+  const Lanes along_u = quarter_rho * lift * u_dot_c * u_dot_c / safe_r - friction;
   const Lanes3 f = {along_c * c.x - along_u * u.x, along_c * c.y - along_u * u.y,
                     along_c * c.z - along_u * u.z};
   return {degenerate ? zero : third * f.x, degenerate ? zero : third * f.y,
@@ -239,8 +260,9 @@ FLAGSIM_LANES_CLONES void AeroForce::row_thirds(int j) const {
   for (; k + kLanes <= cells; k += kLanes) {
     // Nodes 00 (top + k), 01, 10 (bottom + k), 11 of kLanes consecutive cells.
     const std::size_t n00 = top + k, n01 = n00 + 1, n10 = bottom + k, n11 = n10 + 1;
-    const Lanes3 up = third_of_force(work_.x, work_.air, work_.v, n00, n01, n10, wind_);
-    const Lanes3 lo = third_of_force(work_.x, work_.air, work_.v, n01, n11, n10, wind_);
+    const Lanes lift = load(cell_lift_.data() + out + k);  // each cell's (wind.lift_at_pole)
+    const Lanes3 up = third_of_force(work_.x, work_.air, work_.v, n00, n01, n10, wind_, lift);
+    const Lanes3 lo = third_of_force(work_.x, work_.air, work_.v, n01, n11, n10, wind_, lift);
     store(work_.upper[0].data() + out + k, up.x);
     store(work_.upper[1].data() + out + k, up.y);
     store(work_.upper[2].data() + out + k, up.z);
@@ -253,11 +275,13 @@ FLAGSIM_LANES_CLONES void AeroForce::row_thirds(int j) const {
       return Vec3(a[0][i], a[1][i], a[2][i]);
     };
     const std::size_t n00 = top + k, n01 = n00 + 1, n10 = bottom + k, n11 = n10 + 1;
+    Wind wind = wind_;
+    wind.lift = cell_lift_[out + k];
     const auto third = [&](std::size_t a, std::size_t b, std::size_t c) {
       const Vec3 u = kThird * ((node(work_.air, a) + node(work_.air, b) + node(work_.air, c)) -
                                (node(work_.v, a) + node(work_.v, b) + node(work_.v, c)));
       return Vec3(kThird * triangle_aero_force(node(work_.x, a), node(work_.x, b), node(work_.x, c),
-                                               u, wind_));
+                                               u, wind));
     };
     const Vec3 up = third(n00, n01, n10), lo = third(n01, n11, n10);
     for (int axis = 0; axis < 3; ++axis) {
@@ -355,8 +379,10 @@ void AeroForce::linearize(std::span<const Vec3> x_cloth_m, std::span<const Vec3>
   for_each_triangle([&](std::size_t a, std::size_t b, std::size_t c) {
     const Vec3 u =
         kThird * ((air_m_s_[a] + air_m_s_[b] + air_m_s_[c]) - (v_m_s[a] + v_m_s[b] + v_m_s[c]));
+    Wind wind = wind_;
+    wind.lift = cell_lift_[t / 2];  // wind.lift_at_pole
     Mat3 block = (cell_scale_[t / 2] / 9.0) *
-                 triangle_aero_velocity_jacobian(x_m[a], x_m[b], x_m[c], u, wind_);
+                 triangle_aero_velocity_jacobian(x_m[a], x_m[b], x_m[c], u, wind);
     if (how == Definiteness::kProjected) {
       const Mat3 symmetric = 0.5 * (block + block.transpose());
       Eigen::SelfAdjointEigenSolver<Mat3> eigen;

@@ -65,6 +65,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "wind.drag",
                                          "wind.lift",
                                          "wind.friction",
+                                         "wind.lift_at_pole",
                                          "wind.panel",
                                          "wind.model",
                                          "wind.air_density",
@@ -317,6 +318,7 @@ void read_effect_tables(TableReader& root, Scene& scene) {
                                       wind.velocity_m_s.stableNorm()));
     wind.drag = in.real("drag", wind.drag, Bound::between(0.0, 100.0), "");
     wind.lift = in.real("lift", wind.lift, Bound::between(0.0, 100.0), "");
+    wind.lift_at_pole = in.boolean("lift_at_pole", wind.lift_at_pole);
     wind.friction = in.real("friction", wind.friction, Bound::between(0.0, 10.0), "");
     // Default: a sixth of the flag's length, so that the air sees every flag at
     // the same relative scale (docs/flag_physics.md, "The panel size").

@@ -185,6 +185,22 @@ TEST(AeroForce, DampingOnPanelsIsMinusForceVelocityJacobian) {
   test::expect_derivative_is_minus_force_jacobian(aero, x, v, test::Wrt::kVelocity);
 }
 
+TEST(AeroForce, DampingWithoutLiftAtThePoleIsMinusForceVelocityJacobian) {
+  // wind.lift_at_pole = false: the panels at the held edge lose their lift in
+  // the force and in its velocity Jacobian alike.
+  Scene scene = test::small_cloth(9, 11);
+  scene.wind = Wind{};
+  scene.wind->velocity_m_s = Vec3(10, 0, 1);
+  scene.wind->panel_m = 0.25;
+  scene.wind->lift_at_pole = false;
+  const ClothModel model = make_cloth_model(scene);
+  AeroForce aero(model, *scene.wind, 0, scene.flag.areal_density_kg_m2, 0.0);
+  const std::vector<Vec3> x = test::jiggled(model.lattice, 0.1, 8);
+  std::vector<Vec3> v = test::jiggled(model.lattice, 4.0, 9);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] -= model.lattice.rest_positions()[i];
+  test::expect_derivative_is_minus_force_jacobian(aero, x, v, test::Wrt::kVelocity);
+}
+
 // A flag of the default size (1.5 x 1.0 m) on a rows x cols lattice, in 10 m/s wind.
 Scene windy_flag(int rows, int cols) {
   Scene scene = test::small_cloth(rows, cols);
@@ -290,6 +306,46 @@ double wave_growth_rate(const Scene& scene, double wavelength_m, double speed_m_
     energy += 0.5 * model.mass_kg[i] * v[i].squaredNorm();
   }
   return power / (2.0 * energy);
+}
+
+// wind.lift_at_pole = false takes the lift off the column of panels that
+// straddles the pole and nothing else: nodes beyond that column's reach (its
+// panel nodes at 0 and 0.25 m spread over 0.5 m) get the same force to the
+// bit, nodes within it another, and without lift the key changes nothing.
+TEST(AeroForce, WithoutLiftAtThePoleOnlyThePanelsAtThePoleLoseTheirLift) {
+  const Scene scene = windy_flag(33, 49);  // pinned on the left, panels of 0.25 m
+  const ClothModel model = make_cloth_model(scene);
+  std::vector<Vec3> x, v;
+  for (int j = 0; j < model.lattice.rows; ++j)
+    for (int k = 0; k < model.lattice.cols; ++k) {
+      const Vec3 rest = model.lattice.rest_position(j, k);
+      x.push_back(flapping_shape(rest.x(), rest.y()));
+      v.push_back(flapping_velocity(rest.x(), rest.y()));
+    }
+  const auto forces = [&](double lift, bool at_pole) {
+    Wind wind = *scene.wind;
+    wind.lift = lift;
+    wind.lift_at_pole = at_pole;
+    const AeroForce aero(model, wind, 0, scene.flag.areal_density_kg_m2, 0.0);
+    std::vector<Vec3> f(x.size(), Vec3::Zero());
+    aero.add_forces(x, v, f);
+    return f;
+  };
+  const std::vector<Vec3> with = forces(0.5, true), without = forces(0.5, false);
+  int near_changed = 0, far = 0;
+  for (int j = 0; j < model.lattice.rows; ++j)
+    for (int k = 0; k < model.lattice.cols; ++k) {
+      const std::size_t i = model.lattice.index(j, k);
+      if (model.lattice.rest_position(j, k).x() > 0.5 + 1e-9) {
+        EXPECT_EQ(with[i], without[i]) << "node " << j << ", " << k;
+        ++far;
+      } else if ((with[i] - without[i]).norm() > 1e-6 * with[i].norm()) {
+        ++near_changed;
+      }
+    }
+  EXPECT_GT(far, 0);
+  EXPECT_GT(near_changed, model.lattice.rows * 10);  // most of the 17 columns within 0.5 m
+  EXPECT_EQ(forces(0.0, true), forces(0.0, false));
 }
 
 TEST(AeroForce, TheShortestLatticeWavesAreNotDrivenByTheWind) {

@@ -127,6 +127,9 @@ class AeroForce final : public ForceTerm {
   /// the cloth's nodes), so a uniform pressure gives the same force per area
   /// on every cloth node and the whole flag its whole force.
   std::vector<double> cell_scale_;
+  /// Each panel cell's lift coefficient: wind.lift, or 0 at the held edge
+  /// (wind.lift_at_pole false).
+  std::vector<double> cell_lift_;
   std::vector<Mat3> damping_;  ///< [2 (J-1)(K-1)] C_t at the last linearization, N s/m
   double areal_density_kg_m2_;
   double cloth_speed_bound_m_s_;
