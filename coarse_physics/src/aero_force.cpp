@@ -270,12 +270,12 @@ FLAGSIM_LANES_CLONES void AeroForce::row_thirds(int j) const {
     store(work_.lower[1].data() + out + k, lo.y);
     store(work_.lower[2].data() + out + k, lo.z);
   }
+  Wind wind = wind_;        // with each cell's lift (wind.lift_at_pole)
   for (; k < cells; ++k) {  // the row's last cells, one at a time, the same arithmetic
     const auto node = [](const std::vector<double>(&a)[3], std::size_t i) {
       return Vec3(a[0][i], a[1][i], a[2][i]);
     };
     const std::size_t n00 = top + k, n01 = n00 + 1, n10 = bottom + k, n11 = n10 + 1;
-    Wind wind = wind_;
     wind.lift = cell_lift_[out + k];
     const auto third = [&](std::size_t a, std::size_t b, std::size_t c) {
       const Vec3 u = kThird * ((node(work_.air, a) + node(work_.air, b) + node(work_.air, c)) -
@@ -376,11 +376,11 @@ void AeroForce::linearize(std::span<const Vec3> x_cloth_m, std::span<const Vec3>
   const std::span<const Vec3> v_m_s = on_panels(v_cloth_m_s, panel_v_);
   damping_.resize(2 * std::size_t(lattice_.rows - 1) * std::size_t(lattice_.cols - 1));
   std::size_t t = 0;
+  Wind wind = wind_;  // with each cell's lift (wind.lift_at_pole)
   for_each_triangle([&](std::size_t a, std::size_t b, std::size_t c) {
     const Vec3 u =
         kThird * ((air_m_s_[a] + air_m_s_[b] + air_m_s_[c]) - (v_m_s[a] + v_m_s[b] + v_m_s[c]));
-    Wind wind = wind_;
-    wind.lift = cell_lift_[t / 2];  // wind.lift_at_pole
+    wind.lift = cell_lift_[t / 2];
     Mat3 block = (cell_scale_[t / 2] / 9.0) *
                  triangle_aero_velocity_jacobian(x_m[a], x_m[b], x_m[c], u, wind);
     if (how == Definiteness::kProjected) {
