@@ -30,7 +30,9 @@
 # a frame), 40 for `laws`, 3 for `hybrid`.
 # Usage: bench/flag_convergence.sh convergence|hybrid|laws|plot|all OUT_DIR
 #   env FRAMES (default 181: 6 s), FRAMES_FINEST (181, at 129x193), SEEDS ("1 2 3"),
-#   SETS (scene keys for every run, e.g. "wind.panel=0.25 bending.stiffness=1e-4")
+#   SETS (scene keys for every run, e.g. "wind.panel=0.25 bending.stiffness=1e-4"),
+#   JOBS (default 1: runs at a time; 2 on a 2-core machine halves the wall time,
+#   each run still on one core), INTEGRATORS ("mass-spring xpbd", convergence)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 what="${1:?convergence, hybrid, laws, plot or all}"
@@ -38,36 +40,48 @@ out="${2:?an output directory}"
 frames="${FRAMES:-181}"
 frames_finest="${FRAMES_FINEST:-181}"
 read -r -a seeds <<<"${SEEDS:-1 2 3}"
+read -r -a integrators <<<"${INTEGRATORS:-mass-spring xpbd}"
+jobs_max="${JOBS:-1}"
 extra=()
 for set in ${SETS:-}; do extra+=(--set "$set"); done
 mkdir -p "$out"
 metrics=(/usr/bin/python3 "$root/bench/flag_metrics.py")
 
-# run NAME FRAMES ARGS...: one run into OUT_DIR/NAME.h5 (kept when it exists).
+# run NAME FRAMES ARGS...: one run into OUT_DIR/NAME.h5 (kept when it exists),
+# in the background while fewer than JOBS runs are under way.
 run() {
   local name="$1" n="$2"
   shift 2
-  if [ ! -f "$out/$name.h5" ]; then
+  [ -f "$out/$name.h5" ] && { echo "$name: kept" >&2; return; }
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n || true; done
+  (
     "$root/build/flag-sim" run --quiet --frames "$n" -o "$out/$name.h5" "$@" ${extra[@]+"${extra[@]}"} \
       >"$out/$name.log" 2>&1 || true
-  fi
-  echo "$name: $(tail -n 1 "$out/$name.log")" >&2
+    echo "$name: $(tail -n 1 "$out/$name.log")" >&2
+  ) &
+  [ "$jobs_max" -gt 1 ] || wait
 }
 
 # files PREFIX: the seeds' files of one configuration.
 files() { for s in "${seeds[@]}"; do echo "$out/$1_s$s.h5"; done; }
 
 convergence() {
-  for integrator in mass-spring xpbd; do
-    local groups=()
-    for lattice in 33,49 65,97 129,193; do
+  # The finest lattice first: the longest runs start while the others fill in.
+  for integrator in "${integrators[@]}"; do
+    for lattice in 129,193 65,97 33,49; do
       local n="$frames" tag="${integrator}_${lattice/,/x}"
       [ "$lattice" = 129,193 ] && n="$frames_finest"
       for s in "${seeds[@]}"; do
         run "${tag}_s$s" "$n" --mode "$integrator" --set "flag.fine=[$lattice]" --seed "$s"
       done
+    done
+  done
+  wait
+  for integrator in "${integrators[@]}"; do
+    local groups=()
+    for lattice in 33x49 65x97 129x193; do
       # shellcheck disable=SC2207
-      groups+=(--group "$tag" $(files "$tag"))
+      groups+=(--group "${integrator}_$lattice" $(files "${integrator}_$lattice"))
     done
     echo "## $integrator: each lattice against ${integrator} at 129x193"
     "${metrics[@]}" table "${groups[@]}" --markdown
@@ -86,6 +100,7 @@ hybrid() {
   done
   # shellcheck disable=SC2207
   groups+=(--group mass-spring_129x193 $(files mass-spring_129x193))
+  wait
   echo "## the hybrid by coarse lattice, against mass-spring at 129x193"
   "${metrics[@]}" table "${groups[@]}" --markdown
 }
@@ -111,6 +126,7 @@ laws() {
     # shellcheck disable=SC2207
     groups+=(--group "ms_$name" $(files "laws_ms_$name") --group "hy_$name" $(files "laws_hy_$name"))
   done
+  wait
   echo "## flag laws (the distance columns compare unlike flags: read the first table)"
   "${metrics[@]}" table "${groups[@]}" --markdown
 }

@@ -55,7 +55,7 @@ constexpr KeyMeaning kMeanings[] = {
     {"wind.lift", "lift coefficient (the panel wind's quasi-steady lift)"},
     {"wind.friction", "skin-friction coefficient of both faces, on the planform area"},
     {"wind.lift_at_pole",
-     "false: no lift on the air panels at the held edge (the pole's wake); default true"},
+     "true: lift on the air panels at the held edge too (the pole's wake); default false"},
     {"wind.panel",
      "side of the panels the air sees the cloth on (waves shorter than two are "
      "not driven); absent: a sixth of flag.size[0]"},

@@ -110,6 +110,7 @@ TEST(AeroForce, TheLatticeForceIsEveryTriangleThirdAddedInTheTriangleLoopsOrderT
   const ClothModel model = make_cloth_model(scene);
   Wind wind = air(1.2, 0.7);
   wind.velocity_m_s = Vec3(9, 1, 2);
+  wind.lift_at_pole = true;  // every triangle's lift, the pinned column's too
   const AeroForce aero(model, wind, 0, scene.flag.areal_density_kg_m2, 0.0);
   const Lattice& lattice = model.lattice;
   std::vector<Vec3> x = lattice.rest_positions(), v(x.size()), f(x.size());
@@ -186,9 +187,9 @@ TEST(AeroForce, DampingOnPanelsIsMinusForceVelocityJacobian) {
   scene.wind->velocity_m_s = Vec3(10, 0, 1);
   scene.wind->panel_m = 0.25;  // 4 x 4 panels on 1.0 x 0.8 m
   expect_damping_is_minus_force_velocity_jacobian(scene, true);
-  // wind.lift_at_pole = false: the panels at the held edge lose their lift in
-  // the force and in its velocity Jacobian alike.
-  scene.wind->lift_at_pole = false;
+  // wind.lift_at_pole = true (the default is false): the panels at the held
+  // edge keep their lift, in the force and in its velocity Jacobian alike.
+  scene.wind->lift_at_pole = true;
   expect_damping_is_minus_force_velocity_jacobian(scene, true);
 }
 
@@ -347,6 +348,9 @@ TEST(AeroForce, TheShortestLatticeWavesAreNotDrivenByTheWind) {
   // wave of 5 cells (78 mm at 65 x 97) is not seen.
   Scene scene = windy_flag(65, 97);
   scene.wind->panel_m = 0.125;
+  // The lift on the whole flag: without it at the pole the two panel sizes
+  // would leave columns of different widths unlifted (0.125 m, half a cell).
+  scene.wind->lift_at_pole = true;
   const double cell = 1.5 / 96.0, c = 7.0;
   const double long_wave = wave_growth_rate(scene, 1.9 * 1.5, c);
   const double short_wave = wave_growth_rate(scene, 5.0 * cell, c);

@@ -53,12 +53,12 @@ TEST(SceneParser, DefaultsAndOptionalEffects) {
   EXPECT_EQ(scene.simulated_frames(), 301);  // 10 s at 30 fps, plus t = 0
 }
 
-TEST(SceneParser, LiftAtThePoleIsOnUnlessSaidAndABoolean) {
+TEST(SceneParser, LiftAtThePoleIsOffUnlessSaidAndABoolean) {
   const std::string wind = std::string(kMinimal) + "[wind]\nvelocity = [10, 0, 0]\n";
-  EXPECT_TRUE(parse_scene(wind, "s.toml").wind->lift_at_pole);
-  EXPECT_FALSE(parse_scene(wind + "lift_at_pole = false\n", "s.toml").wind->lift_at_pole);
-  EXPECT_FALSE(parse_scene(wind, "s.toml", std::vector<std::string>{"wind.lift_at_pole=false"})
-                   .wind->lift_at_pole);
+  EXPECT_FALSE(parse_scene(wind, "s.toml").wind->lift_at_pole);
+  EXPECT_TRUE(parse_scene(wind + "lift_at_pole = true\n", "s.toml").wind->lift_at_pole);
+  EXPECT_TRUE(parse_scene(wind, "s.toml", std::vector<std::string>{"wind.lift_at_pole=true"})
+                  .wind->lift_at_pole);
   EXPECT_NE(error_of(wind + "lift_at_pole = 1\n").find("wind.lift_at_pole"), std::string::npos);
 }
 

@@ -130,13 +130,14 @@ struct Wind {
   AirModel model = AirModel::kPanels;
   double drag = 1.0;  ///< normal-force coefficient of a flat plate
   double lift = 0.5;  ///< lift coefficient
-  /// false: no lift on the air panels at the held edge (those whose rest
-  /// rectangle holds a pinned node: at the pole, the column that straddles
-  /// it), their drag and friction kept. With the lift there, the pole's half
-  /// of the flag shortens its wave as the lattice is refined
+  /// false (the default): no lift on the air panels at the held edge (those
+  /// whose rest rectangle holds a pinned node: at the pole, the column that
+  /// straddles it, which sits in the pole's wake), their drag and friction
+  /// kept. With the lift there (true, the model before 2026-12-07) the pole's
+  /// half of the flag shortens its wave as the lattice is refined
   /// (docs/measurements/flag_physics_2026-12-07.md); without it the
   /// full-lattice references converge. The panels model only.
-  bool lift_at_pole = true;
+  bool lift_at_pole = false;
   /// Skin friction coefficient of both faces together, on the planform area:
   /// tangential force 1/2 rho C_f A |u_t| u_t. A turbulent flat plate at the
   /// default flag's Reynolds number (U L / nu ~ 1e6) has about 0.0047 a face;
