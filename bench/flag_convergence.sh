@@ -20,7 +20,8 @@
 #                the hybrid at its 0.125 m coarse cells, winds of 5, 10 and 20 m/s on the default
 #                1.5 x 1.0 m flag and aspect ratios H/L 0.5, 0.67 and 1 at
 #                10 m/s: f, lambda/L, c/U, A/L, St (Raynaud & Mulleners 2026:
-#                lambda/L ~ 1.87, c ~ U; St 0.2-0.4 for heavy flags).
+#                lambda/L ~ 1.87, c ~ U; St 0.2-0.4 for heavy flags). Winds
+#                below 10 m/s run longer, for as many flaps as at 10 m/s.
 #
 # Measures from t = 1 s on (the flag starts flat). Runs are kept in OUT_DIR.
 # Six seconds a run by default: the flap is irregular (one second of it reads
@@ -117,10 +118,14 @@ laws() {
   local groups=()
   for c in "${cases[@]}"; do
     read -r name size fine hfine hcoarse wind <<<"$c"
+    # As many flow-through times and flaps (f ~ U) as at 10 m/s: below it the
+    # run is longer (5 m/s: 12 s, about 11 flaps after the first second).
+    local n=$(((frames - 1) * 10 / wind + 1))
+    [ "$n" -lt "$frames" ] && n="$frames"
     for s in "${seeds[@]}"; do
-      run "laws_ms_${name}_s$s" "$frames" --mode mass-spring --set "flag.size=[$size]" \
+      run "laws_ms_${name}_s$s" "$n" --mode mass-spring --set "flag.size=[$size]" \
         --set "flag.fine=[$fine]" --set "wind.velocity=[$wind,0,0]" --seed "$s"
-      run "laws_hy_${name}_s$s" "$frames" --set "flag.size=[$size]" --set "flag.fine=[$hfine]" \
+      run "laws_hy_${name}_s$s" "$n" --set "flag.size=[$size]" --set "flag.fine=[$hfine]" \
         --set "flag.coarse=[$hcoarse]" --set "wind.velocity=[$wind,0,0]" --seed "$s"
     done
     # shellcheck disable=SC2207
