@@ -365,6 +365,12 @@ TEST(AeroForce, TheShortestLatticeWavesAreNotDrivenByTheWind) {
   EXPECT_GT(own_short, 0.5 * own_long);
   // The long wave's rate hardly changes: 0.125 m hats average its slope.
   EXPECT_NEAR(long_wave, own_long, kPanelSmoothing * own_long);
+  // The default, without the lift on the panels at the pole, likewise.
+  scene.wind->panel_m = 0.125;
+  scene.wind->lift_at_pole = false;
+  const double default_long = wave_growth_rate(scene, 1.9 * 1.5, c);
+  EXPECT_GT(default_long, 0.0);
+  EXPECT_LT(std::abs(wave_growth_rate(scene, 5.0 * cell, c)), kGridWaveDriveShare * default_long);
 }
 
 TEST(AeroForce, ProjectedDampingIsPositiveSemidefinite) {
