@@ -100,21 +100,24 @@ AeroForce::AeroForce(const ClothModel& model, const Wind& wind, std::uint64_t se
   // held cloth node (at the pole: the column of panels that straddles it).
   cell_lift_.assign(cells, wind.lift);
   if (!wind.lift_at_pole) {
+    // The held nodes' rest positions, gathered once: each cell looks only at
+    // them (a cloth that is its own panel lattice has as many cells as nodes).
+    std::vector<Vec3> held;
+    for (int j = 0; j < model.lattice.rows; ++j)
+      for (int k = 0; k < model.lattice.cols; ++k)
+        if (model.pinned[model.lattice.index(j, k)])
+          held.push_back(model.lattice.rest_position(j, k));
     const int Kp = lattice_.cols;
     for (int j = 0; j + 1 < lattice_.rows; ++j)
       for (int k = 0; k + 1 < Kp; ++k) {
         const Vec3 a = lattice_.rest_position(j, k), b = lattice_.rest_position(j + 1, k + 1);
         const Vec3 low = a.cwiseMin(b), high = a.cwiseMax(b);
         const double slack = 1e-9 * (high - low).norm();
-        for (std::size_t i = 0; i < model.pinned.size(); ++i) {
-          if (!model.pinned[i]) continue;
-          const Vec3 p =
-              model.lattice.rest_position(int(i) / model.lattice.cols, int(i) % model.lattice.cols);
+        for (const Vec3& p : held)
           if (((p.array() >= low.array() - slack) && (p.array() <= high.array() + slack)).all()) {
             cell_lift_[std::size_t(j) * std::size_t(Kp - 1) + std::size_t(k)] = 0.0;
             break;
           }
-        }
       }
   }
   if (!panels_.same_lattice()) {
