@@ -20,7 +20,7 @@ run() {  # NAME, then the run's arguments after its output
   "$root/build/flag-sim" run --quiet -o "$out/$name.h5" --frames "$frames" \
     --set bending.stiffness=1e-4 "$@" >/dev/null
 }
-folds='flag.folds=[{axis="col",at=0.5,angle=1.2},{axis="row",at=0.5,angle=1.2}]'
+folds='flag.folds=[{axis="col",at=0.5,angle=1.2},{axis="row",at=0.5,angle=1.2,to=0.5},{axis="row",at=0.5,angle=-1.2,from=0.5}]'
 for r in $(seq 1 "$rounds"); do
   run "bending_r$r"
   run "creases_r$r" --set creases.yield_angle=1.0

@@ -38,7 +38,8 @@ void CreaseRidges::set_rest(std::span<const double> coarse_rest_rad) {
 }
 
 bool CreaseRidges::any() const {
-  return std::any_of(rest_.begin(), rest_.end(), [](double angle) { return angle > kLeastCrease; });
+  return std::any_of(rest_.begin(), rest_.end(),
+                     [](double angle) { return std::abs(angle) > kLeastCrease; });
 }
 
 void CreaseRidges::find_ridges(std::span<const Vec3> coarse_m, bool rows, int fiber,
@@ -46,6 +47,7 @@ void CreaseRidges::find_ridges(std::span<const Vec3> coarse_m, bool rows, int fi
   out.clear();
   const int Jc = grid_.coarse_rows, Kc = grid_.coarse_cols;
   const int nodes = rows ? Kc : Jc;
+  const int across = rows ? Jc : Kc;
   if (rest_.empty() || nodes < 3) return;
   const std::size_t row_triples = std::size_t(Jc) * std::size_t(Kc - 2);
   // Rest angle of the triple centred at node i of this fiber, and the node's position.
@@ -53,24 +55,39 @@ void CreaseRidges::find_ridges(std::span<const Vec3> coarse_m, bool rows, int fi
     return rows ? rest_[std::size_t(fiber) * std::size_t(Kc - 2) + std::size_t(i - 1)]
                 : rest_[row_triples + std::size_t(i - 1) * std::size_t(Kc) + std::size_t(fiber)];
   };
-  const auto node = [&](int i) -> const Vec3& {
-    return coarse_m[rows ? grid_.coarse_index(fiber, i) : grid_.coarse_index(i, fiber)];
+  // Node i of the fiber `f` of this family (f = fiber: this one).
+  const auto node_of = [&](int f, int i) -> const Vec3& {
+    return coarse_m[rows ? grid_.coarse_index(f, i) : grid_.coarse_index(i, f)];
   };
+  const auto node = [&](int i) -> const Vec3& { return node_of(fiber, i); };
   // Dense and coarse rest spacings along the fiber, m.
   const double dense_link = rows ? fine_.spacing_x_m : fine_.spacing_y_m;
   const double spacing = dense_link * (rows ? grid_.col_stride : grid_.row_stride);
   for (int first = 1; first + 1 < nodes; ++first) {
-    if (!(rest(first) > kLeastCrease)) continue;
+    if (!(std::abs(rest(first)) > kLeastCrease)) continue;
+    // A run of creased triples on one side is one crease line.
+    const double side = std::copysign(1.0, rest(first));
     int last = first;
-    while (last + 2 < nodes && rest(last + 1) > kLeastCrease) ++last;
-    double angle = 0.0, moment = 0.0;
+    while (last + 2 < nodes && side * rest(last + 1) > kLeastCrease) ++last;
+    double angle = 0.0, weight = 0.0, moment = 0.0;
     for (int i = first; i <= last; ++i) {
       angle += rest(i);
-      moment += rest(i) * i;
+      weight += std::abs(rest(i));
+      moment += std::abs(rest(i)) * i;
     }
-    // What the coarse cloth shows of it: its turning across the run.
+    const double place = moment / weight;
+    // What the coarse cloth shows of it: its signed turning across the run
+    // about the fold axis (the cross fiber's chord at the node nearest the
+    // line; creased_bending.hpp's angle, with its sign).
+    const int at = std::clamp(int(std::lround(place)), first, last);
+    const Vec3 axis =
+        rows ? node_of(std::max(0, fiber - 1), at) - node_of(std::min(across - 1, fiber + 1), at)
+             : node_of(std::min(across - 1, fiber + 1), at) - node_of(std::max(0, fiber - 1), at);
     const Vec3 in = node(first) - node(first - 1), out_link = node(last + 1) - node(last);
-    const double shown = std::atan2(in.cross(out_link).norm(), in.dot(out_link));
+    const double axis_length = axis.norm();
+    const Vec3 tau = axis_length > 0.0 ? Vec3(axis / axis_length) : Vec3::Zero();
+    const double shown =
+        std::atan2(in.cross(out_link).dot(tau), in.dot(out_link) - in.dot(tau) * out_link.dot(tau));
     // The tension along the fiber there: Y times the mean strain of its links.
     double length = 0.0;
     for (int i = first - 1; i <= last; ++i) length += (node(i + 1) - node(i)).norm();
@@ -78,11 +95,13 @@ void CreaseRidges::find_ridges(std::span<const Vec3> coarse_m, bool rows, int fi
     const double tension = params_.stretch_modulus_n_m * std::max(strain, 0.0);
     double decay = dense_link;
     if (tension > 0.0) decay = std::min(decay, std::sqrt(params_.rigidity_j / tension));
-    const double kink =
-        std::min(kMostKink, std::max(0.0, angle - shown) / (1.0 + params_.width_m / (2.0 * decay)));
+    const double kink = std::min(
+        kMostKink, std::max(0.0, side * (angle - shown)) / (1.0 + params_.width_m / (2.0 * decay)));
     const double sharpen = std::clamp(2.0 * shown / angle - 1.0, 0.0, 1.0);
+    // A fold toward the front (a valley seen from it) puts its line behind
+    // its sides: the ridge stands on the back, against the normal.
     if (kink > 0.0 || sharpen > 0.0)
-      out.push_back({moment / angle, 0.5 * kink * decay, decay, sharpen});
+      out.push_back({place, -side * 0.5 * kink * decay, decay, sharpen});
     first = last;
   }
 }
@@ -156,7 +175,7 @@ void CreaseRidges::add_family(bool rows, std::span<const Vec3> surface_m,
         if (ridge.sharpen > 0.0)
           sharpen(node, along_count, place, kSharpenedCells * stride_along, weight * ridge.sharpen,
                   surface_m, normals, offsets_);
-        if (!(ridge.height_m > 0.0)) continue;
+        if (ridge.height_m == 0.0) continue;
         const double reach = kRidgeReach * ridge.decay_m / link_m;
         const int from = std::max(0, int(std::ceil(place - reach)));
         const int to = std::min(along_count - 1, int(std::floor(place + reach)));

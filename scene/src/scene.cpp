@@ -182,8 +182,11 @@ void check_scene(const Scene& scene) {
     if (!(fold.at > 0.0 && fold.at < 1.0))
       fail("flag.folds",
            fmt::format("at = {}: a fold line lies inside the flag, 0 < at < 1", fold.at));
-    if (!(fold.angle_rad > 0.0 && fold.angle_rad <= std::numbers::pi))
-      fail("flag.folds", fmt::format("angle = {} rad: expected 0 < angle <= pi", fold.angle_rad));
+    if (!(fold.angle_rad != 0.0 && std::abs(fold.angle_rad) <= std::numbers::pi))
+      fail("flag.folds", fmt::format("angle = {} rad: expected -pi to pi, not 0", fold.angle_rad));
+    if (!(fold.from >= 0.0 && fold.from < fold.to && fold.to <= 1.0))
+      fail("flag.folds",
+           fmt::format("from = {}, to = {}: expected 0 <= from < to <= 1", fold.from, fold.to));
   }
   if (scene.creases) {
     const Creases& creases = *scene.creases;

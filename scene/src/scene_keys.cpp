@@ -38,7 +38,12 @@ constexpr KeyMeaning kMeanings[] = {
      "row (the fold line runs along a row, bending the columns) or col (along a column, "
      "bending the rows)"},
     {"flag.folds.at", "where the fold line lies: a fraction of the height (row) or width (col)"},
-    {"flag.folds.angle", "the crease's rest angle (pi: folded flat on itself)"},
+    {"flag.folds.from",
+     "where along its line the fold starts: a fraction of the width (row) or height (col)"},
+    {"flag.folds.to", "where along its line the fold ends (from < to)"},
+    {"flag.folds.angle",
+     "the crease's rest angle, rad: + toward the front (a valley seen from it), - toward the "
+     "back; pi: folded flat on itself"},
     {"pole.motion", "how the pinned nodes move: sine"},
     {"pole.axis", "direction of the pole's motion"},
     {"pole.amplitude", "amplitude of the pole's motion"},

@@ -52,6 +52,8 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "flag.folds.axis",
                                          "flag.folds.at",
                                          "flag.folds.angle",
+                                         "flag.folds.from",
+                                         "flag.folds.to",
                                          "pole.motion",
                                          "pole.axis",
                                          "pole.amplitude",
@@ -251,13 +253,23 @@ void read_flag_table(TableReader& in, FlagSpec& flag) {
       const std::optional<double> at =
           fold_in.optional_real("at", Bound{0.0, 1.0, true}, "(fraction of the flag)");
       const std::optional<double> angle =
-          fold_in.optional_real("angle", Bound{0.0, kPi, true}, "rad");
+          fold_in.optional_real("angle", Bound::between(-kPi, kPi), "rad");
       if (!at || !angle)
         fold_in.fail(at ? "angle" : "at", "a fold line needs where it lies (at) and its angle");
+      if (*angle == 0.0)
+        fold_in.fail("angle",
+                     "a fold of 0 rad leaves nothing: positive folds toward the front (a valley "
+                     "seen from it), negative toward the back (a mountain)");
       if (!(*at < 1.0))
         fold_in.fail("at", "1 is the flag's edge: a fold line lies inside, 0 < at < 1");
       fold.at = *at;
       fold.angle_rad = *angle;
+      fold.from =
+          fold_in.real("from", fold.from, Bound::between(0.0, 1.0), "(fraction of the line)");
+      fold.to = fold_in.real("to", fold.to, Bound::between(0.0, 1.0), "(fraction of the line)");
+      if (!(fold.from < fold.to))
+        fold_in.fail("to", fmt::format("the fold runs from {} to {}: expected from < to", fold.from,
+                                       fold.to));
       fold_in.finish(kAllKeys);
       flag.folds.push_back(fold);
     }

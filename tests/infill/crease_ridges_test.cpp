@@ -58,6 +58,7 @@ const std::vector<double>& offsets_of(CreaseRidges& ridges, const std::vector<Ve
 
 // Coarse rest angles of a fold along a column at coarse place 2.25 (dense
 // column 9): 0.75 of `angle` on the row triples centred at kc = 2, 0.25 at kc = 3.
+// Positive: toward the front, the lattice normal (-z here).
 std::vector<double> fold_at_2_25(double angle) {
   std::vector<double> rest(kRowTriples + kColTriples, 0.0);
   for (int jc = 0; jc < 5; ++jc) {
@@ -77,24 +78,30 @@ TEST(CreaseRidges, AFlattenedCreaseLeavesARidgeOnItsLineAsTheHingeAndTheTensionS
   const std::vector<double>& offsets = offsets_of(ridges, coarse_flat(0.005));
   const double lambda = 1e-3, kink = 0.3 / (1.0 + 1e-3 / (2.0 * lambda));
   for (int j = 0; j < 17; ++j) {
-    // On the line (dense column 9 = 2.25 x 4), height kink lambda / 2; a link
+    // On the line (dense column 9 = 2.25 x 4), height kink lambda / 2, behind
+    // the surface (a fold toward the front is a valley seen from it); a link
     // away, e^(-50) of it: the ridge is the line's alone.
-    EXPECT_NEAR(offsets[kFine.index(j, 9)], 0.5 * kink * lambda, test::kRoundOff) << j;
+    EXPECT_NEAR(offsets[kFine.index(j, 9)], -0.5 * kink * lambda, test::kRoundOff) << j;
     for (int k = 0; k < 25; ++k) {
       if (k != 9) {
-        EXPECT_LT(offsets[kFine.index(j, k)], 1e-20) << j << " " << k;
+        EXPECT_LT(std::abs(offsets[kFine.index(j, k)]), 1e-20) << j << " " << k;
       }
     }
   }
+  // The same crease toward the back stands in front, as high.
+  ridges.set_rest(fold_at_2_25(-0.3));
+  EXPECT_NEAR(offsets_of(ridges, coarse_flat(0.005))[kFine.index(3, 9)], 0.5 * kink * lambda,
+              test::kRoundOff);
   // Less tension, a wider and taller ridge: at 0.05% (T = 10 N/m), lambda = 3.2 mm.
+  ridges.set_rest(fold_at_2_25(0.3));
   const std::vector<double>& slack = offsets_of(ridges, coarse_flat(0.0005));
   const double wide = std::sqrt(1e-4 / 10.0), wide_kink = 0.3 / (1.0 + 1e-3 / (2.0 * wide));
-  EXPECT_NEAR(slack[kFine.index(3, 9)], 0.5 * wide_kink * wide, 1e-12);
+  EXPECT_NEAR(slack[kFine.index(3, 9)], -0.5 * wide_kink * wide, 1e-12);
   // No tension, a crease of 2 rad: lambda is the dense link, the kink capped at 0.4 rad.
   ridges.set_rest(fold_at_2_25(2.0));
   const std::vector<double>& capped = offsets_of(ridges, coarse_flat(0.0));
-  EXPECT_NEAR(capped[kFine.index(3, 9)], 0.5 * 0.4 * 0.05, 1e-12);
-  EXPECT_NEAR(capped[kFine.index(3, 10)], 0.5 * 0.4 * 0.05 * std::exp(-1.0), 1e-12);
+  EXPECT_NEAR(capped[kFine.index(3, 9)], -0.5 * 0.4 * 0.05, 1e-12);
+  EXPECT_NEAR(capped[kFine.index(3, 10)], -0.5 * 0.4 * 0.05 * std::exp(-1.0), 1e-12);
 }
 
 TEST(CreaseRidges, AFoldTheCoarseClothShowsIsSharpenedOntoItsLineAndNoCreaseMakesNothing) {
@@ -102,20 +109,24 @@ TEST(CreaseRidges, AFoldTheCoarseClothShowsIsSharpenedOntoItsLineAndNoCreaseMake
   CreaseRidges ridges(kFine, kGrid, params);
   // The coarse rows turning by the crease's 0.3 rad as the physics holds it
   // (fold_at_2_25): 0.225 rad at coarse node 2, 0.075 at node 3 (dense columns
-  // 8 and 12), all of it shown, no ridge. The surface between them is rounded
-  // (here: linear, kinked at both); sharpened, the rows turn most on the
-  // fold's own line, dense column 9, by most of the 0.3 rad.
+  // 8 and 12), toward the front (-z), all of it shown, no ridge. The surface
+  // between them is rounded (here: linear, kinked at both); sharpened, the
+  // rows turn most on the fold's own line, dense column 9, by most of the 0.3 rad.
   std::vector<Vec3> coarse = coarse_flat(0.0);
   for (int jc = 0; jc < 5; ++jc) {
     Vec3 at(0.4, -0.2 * jc, 0.0);
     for (int kc = 3; kc < 7; ++kc) {
       const double angle = kc == 3 ? 0.225 : 0.3;
-      at += 0.2 * Vec3(std::cos(angle), 0.0, std::sin(angle));
+      at += 0.2 * Vec3(std::cos(angle), 0.0, -std::sin(angle));
       coarse[std::size_t(jc) * 7 + std::size_t(kc)] = at;
     }
   }
-  ridges.set_rest(fold_at_2_25(0.3));
   const Surface surface = linear_surface(coarse);
+  // A crease toward the back, which the coarse cloth shows inside out, is not
+  // gathered onto its line: what stands there is its ridge, in front.
+  ridges.set_rest(fold_at_2_25(-0.3));
+  EXPECT_GT(ridges.offsets(coarse, surface.points, surface.normals)[kFine.index(2, 9)], 0.0);
+  ridges.set_rest(fold_at_2_25(0.3));
   const std::vector<double>& offsets = ridges.offsets(coarse, surface.points, surface.normals);
   for (int j = 0; j < 17; ++j) {
     std::vector<Vec3> row;
@@ -152,7 +163,7 @@ TEST(CreaseRidges, BetweenCoarseFibersTheirRidgesAreSharedByNearness) {
   ridges.set_rest(rest);
   const std::vector<double>& offsets = offsets_of(ridges, coarse_flat(0.005));
   const double full = offsets[kFine.index(4, 8)];
-  EXPECT_GT(full, 0.0);
+  EXPECT_LT(full, 0.0);  // toward the front: behind the surface
   for (int j = 0; j <= 8; ++j) {
     const double weight = j <= 4 ? j / 4.0 : (8 - j) / 4.0;
     EXPECT_NEAR(offsets[kFine.index(j, 8)], weight * full, test::kRoundOff) << j;

@@ -277,6 +277,19 @@ TEST(SceneParser, FoldLinesAndCreasesAreReadAndChecked) {
   EXPECT_NE(error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 0.5, angle = 4 }]\n")
                 .find("flag.folds.angle"),
             std::string::npos);
+  // A signed angle: toward the back is negative; none is no fold.
+  EXPECT_EQ(parse_scene(std::string(kMinimal) +
+                            "folds = [{ axis = \"row\", at = 0.5, angle = -2.5 }]\n" + creases,
+                        "s.toml")
+                .flag.folds[0]
+                .angle_rad,
+            -2.5);
+  EXPECT_NE(error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 0.5, angle = 0 }]\n")
+                .find("flag.folds.angle: a fold of 0 rad leaves nothing"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "folds = [{ axis = \"row\", at = 0.5, angle = -4 }]\n")
+                .find("flag.folds.angle"),
+            std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "folds = 3\n").find("flag.folds: expected a list"),
             std::string::npos);
   EXPECT_NE(error_of(folded + creases + "width = 0\n").find("creases.width"), std::string::npos);

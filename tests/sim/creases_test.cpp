@@ -16,14 +16,17 @@ namespace flagsim::sim {
 namespace {
 
 // The default scene on a 17 x 25 full lattice (mass-spring), 2 s, creased in
-// four (a fold line along the middle column and one along the middle row,
-// each 2.5 rad), with [bending] D = 1e-4 N m; `more` overrides.
+// four (a fold line along the middle column, 2.5 rad toward the front, and
+// one along the middle row, 2.5 rad toward the front on the pole's half and
+// toward the back on the fly's: folded in half, then in half again), with
+// [bending] D = 1e-4 N m; `more` overrides.
 Scene folded_in_four(std::vector<std::string> more = {}) {
   std::vector<std::string> sets = {
       "scene.mode=\"mass-spring\"",
       "flag.fine=[17,25]",
       "scene.duration=2.0",
-      "flag.folds=[{axis=\"col\",at=0.5,angle=2.5},{axis=\"row\",at=0.5,angle=2.5}]",
+      std::string("flag.folds=[{axis=\"col\",at=0.5,angle=2.5},") +
+          "{axis=\"row\",at=0.5,angle=2.5,to=0.5},{axis=\"row\",at=0.5,angle=-2.5,from=0.5}]",
       "bending.stiffness=1e-4",
       "creases.set_time=1.0",
       "creases.relax_time=30.0"};
@@ -69,8 +72,8 @@ double fold_rest_angle(const SimulationState& state) {
 
 TEST(Creases, AFoldedClothKeepsItsFoldLinesWhereNothingPullsThemOut) {
   // No wind, no gravity, nothing pinned: the crease pops out of the flat start
-  // (a smooth unstable equilibrium) and stays. Over 2 s the fold line's median
-  // turning angle stays at least 20x the cloth's (measured: 30x and more from
+  // (pushed to each crease's side) and stays. Over 2 s the fold line's median
+  // turning angle stays at least 20x the cloth's (measured: 38x and more from
   // 0.2 s on); without the fold lines the same start stays flat.
   const std::vector<std::string> calm = {"scene.mode=\"mass-spring\"", "flag.pin=\"none\"",
                                          "wind.velocity=[0,0,0]", "gravity.acceleration=[0,0,0]"};
@@ -81,11 +84,11 @@ TEST(Creases, AFoldedClothKeepsItsFoldLinesWhereNothingPullsThemOut) {
     const auto [line, cloth] = fold_and_cloth_turning(creased->positions());
     EXPECT_GT(line, 20.0 * cloth) << "frame " << frame;  // the goal: 3x
   }
-  // Little tension (the two fold lines cross and pull on each other): the
-  // creases barely relax (measured 2.4963 rad).
+  // Little tension (the two fold lines cross and hold each other at about 1.1
+  // rad): the creases barely relax.
   EXPECT_NEAR(fold_rest_angle(creased->state()), 2.5, 0.01);
   // The other backends keep them too: at least 15x the cloth's turning from
-  // 0.5 s on (measured, lowest over 0.5-2 s: implicit 23x, xpbd 44x, bullet 44x).
+  // 0.5 s on (measured, lowest over 0.5-2 s: implicit 70x, xpbd 50x, bullet 44x).
   for (const char* mode : {"implicit", "xpbd", "bullet"}) {
     std::vector<std::string> sets = calm;
     sets.emplace_back(std::string("scene.mode=\"") + mode + "\"");
@@ -148,14 +151,19 @@ TEST(Creases, AFoldHeldPastTheYieldSetsAndOneBelowItLeavesNothing) {
   // 1 s after letting go (measured): 1.94 rad set, 0.147 rad without creases (13x).
   EXPECT_GT(set.back(), 1.5);
   EXPECT_GT(set.back(), 10.0 * open.back());
+  // Under the yield nothing sets, and the fold opens as without [creases]
+  // (within 10% was the goal; measured 1e-5: the stability limit
+  // allows for creases that may set, so the substeps differ a little).
   const std::vector<double> under = run(0.8, true), plain = run(0.8, false);
-  EXPECT_EQ(under, plain);  // within 10% was the goal: the same bits
+  ASSERT_EQ(under.size(), plain.size());
+  for (std::size_t f = 0; f < under.size(); ++f)
+    EXPECT_NEAR(under[f], plain[f], 1e-3 * plain[f] + 1e-9) << f;
 }
 
 TEST(Creases, TheWindPullsTheFoldLinesOutFasterTheStrongerItBlows) {
   // The default flag, creased in four, hoisted into 5 and 15 m/s for 2 s: the
   // fold line's rest angle falls in both (the wind's pull relaxes it), more in
-  // the stronger. Measured (17 x 25, relax_time 30 s): 2.5 -> 2.474 (5 m/s), 2.464 (15 m/s).
+  // the stronger. Measured (17 x 25, relax_time 30 s): 2.5 -> 2.471 (5 m/s), 2.464 (15 m/s).
   double relaxed[2] = {};
   for (const int fast : {0, 1}) {
     const auto flag = make_simulation(
@@ -165,7 +173,7 @@ TEST(Creases, TheWindPullsTheFoldLinesOutFasterTheStrongerItBlows) {
 
     EXPECT_LT(relaxed[fast], 2.49);
   }
-  // More than 1.2x the relaxation (measured 0.0355 / 0.0264 rad = 1.34x).
+  // More than 1.2x the relaxation (measured 0.0355 / 0.0287 rad = 1.24x).
   EXPECT_GT(2.5 - relaxed[1], 1.2 * (2.5 - relaxed[0]));
 }
 
@@ -221,10 +229,12 @@ TEST(Creases, TheHybridDrawsAFoldLineWhereItLiesAtDenseResolution) {
   EXPECT_GE(column, 27);
   EXPECT_LE(column, 30);
   EXPECT_GT(*strongest, 2.0);
-  // Most marked at first (0.2-0.7 s: 5.7x), less as the wind pulls (1.9x later).
+  // Most marked at first (0.2-0.7 s: 4.5x), less as the wind pulls (2.7x later:
+  // the crease keeps its side, so the wind only flattens it).
   const double early = ratios(creased, 0, 15)[28], late = ratios(creased, 15, creased.size())[28];
   EXPECT_GT(early, 4.0);
-  EXPECT_LT(late, 0.5 * early);
+  EXPECT_LT(late, 0.8 * early);
+  EXPECT_GT(late, 2.0);
   // Without the fold, nothing marks that column (measured 1.03x).
   EXPECT_LT(ratios(plain, 0, plain.size())[28], 1.3);
 }

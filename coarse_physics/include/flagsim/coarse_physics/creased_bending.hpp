@@ -4,37 +4,43 @@
 // plastic flow moves (the paper's future work, section 5: "a crease like a
 // fold line forms and does not come out").
 //
-// Per triple (a, b, c) of a row or column, with q = x_a - 2 x_b + x_c (links
-// of length s turning by theta: |q| = 2 s sin(theta / 2)):
+// Per triple (a, b, c) of a row or column, with e1 = x_b - x_a, e2 = x_c - x_b,
+// q = e2 - e1 and the fold axis t across the fiber (the cross fiber's chord
+// through b: x(j-1,k) - x(j+1,k) for a row triple, x(j,k+1) - x(j,k-1) for a
+// column triple, one-sided on the border), the fiber's signed angle
 //
-//   E = 1/2 k_b |q|^2 - k_b c (R - eps),   R = sqrt(|q|^2 + eps^2),
-//   c = 2 s sin(theta_r / 2),               eps = kCreaseRounding s.
+//   phi = atan2(det(e1, e2, t^), e1.e2 - (e1.t^)(e2.t^))
 //
-// theta_r = 0 (c = 0) is bending_springs' energy exactly. Otherwise E is least
-// where R = c, |q| = sqrt(c^2 - eps^2): a fold of theta_r (less by
-// eps^2 / (2 s c) rad), about any axis across the fiber. A crease keeps its
-// line and its angle, not its side: a real crease also has a side (mountain
-// or valley); here the first bending after the fold picks it. eps rounds the
-// cusp a sharp rest angle puts at the straight fiber: there the force of
-// 1/2 k (|q| - c)^2 jumps and its stiffness is unbounded; with eps, the
-// straight fiber is a smooth unstable equilibrium (a crease pulled flat snaps
-// to one side) and the stiffness stays below k_b (1 + c / eps).
+// is positive where the fiber turns toward the cloth's front, the side of the
+// lattice normal (x(j,k+1) - x(j,k)) x (x(j+1,k) - x(j,k)) (-z for a cloth at
+// rest in the xy plane; the infill's normal): a valley seen from the front.
+// A crease of rest angle phi_r is the fold's q in each link's own frame
+// (u = e / |e| along the link, n = t x e / |t x e| its side's front normal):
 //
-//   dE/dq = k_b (1 - c / R) q,
-//   d2E/dq2 = k_b [(1 - c / R) I + c q q^T / R^3]   (along q: 1 - c eps^2 / R^3),
+//   r1 = s ((cos phi_r - 1) u1 + sin phi_r n1),   r2 = s ((1 - cos phi_r) u2 + sin phi_r n2),
+//   E = 1/4 k_b |q - r1|^2 + 1/4 k_b |q - r2|^2,
 //
-// and in the positions, with g = (1, -2, 1): force -g_i dE/dq on node i,
-// Hessian g g^T (x) d2E/dq2.
+// s the rest link length along the fiber. A fiber folded by phi_r (links of
+// length s) has q = r1 = r2: no force at all; folded by as much to the other
+// side, E = 2 k_b s^2 sin^2 phi_r, so a crease keeps its side (mountain or
+// valley); flat, it is pushed toward its side. phi_r = 0 is bending_springs'
+// 1/2 k_b |q|^2 exactly (computed as it is: the same bits). The frames are
+// those of the links, not of the fold's bisector, so they stay defined folded
+// flat (|phi_r| = pi, where both sides are the same fold). The gradient
+// (creased_bending.cpp) is written out on the five nodes a, b, c and the
+// axis' ends; the Hessian is its forward-mode derivative (Eigen's AutoDiff),
+// made only for the creased triples where the implicit stepper linearizes.
 //
 // Plastic flow (scene.hpp, Creases): at the start of every output frame, each
-// triple's present angle theta = 2 asin(min(1, |q| / 2 s)) moves its held
-// angle theta_h (theta low-passed with time constant set_time: what the fold
-// has been for a while) and its rest angle, over the frame before (dt = 1 /
-// fps): toward theta_h with time constant set_time where theta_h >
-// max(theta_r, yield_angle) (a fold held past the yield sets; a flapping
-// cloth's kinks, there and gone within a period, do not), and toward theta
-// where theta < theta_r (a crease held flatter) with time constant
-// relax_time / phi,
+// triple's present signed angle theta (phi above) moves its held angle theta_h
+// (theta low-passed with time constant set_time: what the fold has been for a
+// while; a flapping cloth's kinks, there and gone within a period and on
+// either side, leave it low) and its rest angle theta_r, over the frame
+// before (dt = 1 / fps): toward theta_h with time constant set_time where
+// |theta_h| > max(|theta_r|, yield_angle) on theta_r's side (or theta_r = 0):
+// a fold held past the yield sets; and toward theta where theta is flatter
+// than theta_r or on its other side (a crease held flatter, or turned inside
+// out) with time constant relax_time / phi,
 //
 //   phi = 1 / (1 + sqrt(T_c / T)),   T_c = D / w^2,
 //
@@ -49,6 +55,7 @@
 // (default: D = 1e-4 N m, w = 1 mm: T_c = 100 N/m; a 10 m/s wind pulls the
 // default flag with about 90). The rest and held angles are the term's
 // memory, saved and restored with the state (ClothState::memory).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -61,20 +68,24 @@
 
 namespace flagsim::physics {
 
-/// eps / s: the rounding of a crease's cusp (above). A rest angle under about
-/// this many radians makes no fold.
-inline constexpr double kCreaseRounding = 0.05;
-
 /// The rest angle, rad, of every triple of bending_triples(lattice) (same
-/// order) from `folds`: each fold's angle on the triples its line crosses,
-/// shared between the two fiber nodes either side of it in proportion to
-/// their nearness (the total turning across the line is the fold's); capped at pi.
+/// order) from `folds`: each fold's signed angle (positive: a valley seen from
+/// the front, above) on the triples its line crosses, shared between the two
+/// fiber nodes either side of it in proportion to their nearness (the total
+/// turning across the line is the fold's); held within [-pi, pi].
 /// A line within a link of the edge is moved onto the first interior node.
 std::vector<double> fold_rest_angles(std::span<const Fold> folds, const Lattice& lattice);
 
 /// The term's memory at t = 0: the rest angles of `folds` (fold_rest_angles),
 /// then the held angles (0: nothing has been held yet), rad.
 std::vector<double> initial_crease_memory(std::span<const Fold> folds, const Lattice& lattice);
+
+/// Bounds on the absolute row sums of the crease part's Hessian, over k_b,
+/// at a triple's fiber nodes and at its axis' ends, for links within 30% of
+/// their rest length and any rest angle: the explicit integrators' stability
+/// limit (add_stiffness_bound). Sampled in tests/coarse_physics/creased_bending_test.cpp.
+inline constexpr double kCreaseRowSum = 56.0;
+inline constexpr double kAxisRowSum = 14.0;
 
 class CreasedBending;
 
@@ -110,20 +121,27 @@ class CreasedBending final : public ForceTerm {
   std::span<const double> memory() const override { return memory_; }
   void set_memory(std::span<const double> memory) override;
 
-  /// The present angle of every triple at `x_m`, rad (the plastic step's theta).
+  /// The present signed angle of every triple at `x_m`, rad (phi above; the
+  /// plastic step's theta): positive where the fiber turns toward the front.
   std::vector<double> angles(std::span<const Vec3> x_m) const;
   /// phi of every triple at `x_m`: the share of a crease's unfolding its hinge takes.
   std::vector<double> hinge_shares(std::span<const Vec3> x_m) const;
 
  private:
-  /// c and eps of triple t from its rest angle.
-  void set_rest_length(std::size_t t);
+  /// Where the implicit stepper linearized a creased triple: its five nodes
+  /// (a, b, c, the axis' ends) and the 15 x 15 Hessian of its crease part.
+  struct CreasedBlock {
+    std::array<std::uint32_t, 5> nodes;
+    Eigen::Matrix<double, 15, 15> hessian;
+  };
 
   std::vector<BendingTriple> triples_;
-  std::vector<double> spacing_m_;  ///< [triples] s, the rest link length along the fiber
-  std::vector<double> memory_;     ///< [2 triples] theta_r, then theta_h
-  std::vector<double> rest_m_;     ///< [triples] c = 2 s sin(theta_r / 2)
-  std::vector<Mat3> hessian_;      ///< [triples] d2E/dq2 at the last linearization
+  /// [triples] the ends (p, m) of each triple's fold axis t = x_p - x_m
+  std::vector<std::array<std::uint32_t, 2>> axis_;
+  std::vector<double> spacing_m_;      ///< [triples] s, the rest link length along the fiber
+  std::vector<double> memory_;         ///< [2 triples] theta_r, then theta_h
+  std::vector<Mat3> hessian_;          ///< [triples] the plain part's d2E/dq2 (plain k_b I)
+  std::vector<CreasedBlock> creased_;  ///< the creased triples at the last linearization
   Creases creases_;
   double stretch_modulus_n_m_ = 0.0;  ///< Y, for the tension across a crease
   double hinge_tension_n_m_ = 0.0;    ///< T_c = D / w^2

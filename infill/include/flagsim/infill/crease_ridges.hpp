@@ -6,12 +6,12 @@
 // Where: a fold line between two coarse nodes is held by the physics as two
 // rest angles, shared in proportion to the nodes' nearness
 // (fold_rest_angles); along each coarse fiber, a run of creased triples is
-// one crease line, at their angle-weighted mean place (which gives back the
-// fold's own place, between coarse lines) with their summed angle theta_r.
+// one crease line (a run on one side), at their angle-weighted mean place (which
+// gives back the fold's own place, between coarse lines) with their summed angle theta_r.
 //
-// What: the coarse cloth shows theta_c of it, the turning of the coarse fiber
-// across the run. The rest, theta_r - theta_c, is a crease the coarse lattice
-// cannot hold: pulled by the tension T, a hinge of width w in a sheet of
+// What: the coarse cloth shows theta_c of it, the signed turning of the coarse
+// fiber across the run (on the crease's side, or against it). The rest, theta_r - theta_c, is a
+// crease the coarse lattice cannot hold: pulled by the tension T, a hinge of width w in a sheet of
 // rigidity D is flattened but for a ridge: the sheet beside it bends back
 // over lambda = sqrt(D / T) (D y'''' = T y'', y ~ exp(-|x| / lambda)); the
 // hinge's moment (D / w)(theta_r - theta_k) balances the sheet's D theta_k /
@@ -26,8 +26,10 @@
 // m/s wind (T ~ 100 N/m) and D = 1e-4 N m: lambda = 1 mm, a 2.5 rad crease
 // flattened by the physics leaves a ridge of 0.8 mm on a dense link of 8 mm:
 // 12 degrees of turning on the line against the cloth's median of about 1.
-// A crease keeps no side in the physics; the ridge stands on the side of the
-// dense lattice's normal (row tangent x column tangent), always the same.
+// A crease keeps its side (creased_bending.hpp: a positive rest angle folds
+// toward the front, the dense lattice's normal, row tangent x column
+// tangent): the ridge of a fold toward the front (a valley seen from it)
+// stands behind the surface, against the normal, and one toward the back in front.
 //
 // The part the coarse cloth shows, theta_c, the smooth surface rounds over the
 // coarse cells either side. It is sharpened onto the crease's own line: along
@@ -79,7 +81,7 @@ class CreaseRidges {
   /// fractional), its ridge's height and decay length.
   struct Ridge {
     double place = 0.0;
-    double height_m = 0.0;
+    double height_m = 0.0;  ///< along the normal: negative for a fold toward the front
     double decay_m = 0.0;
     double sharpen = 0.0;  ///< how much of the surface's turning across it goes onto the line
   };

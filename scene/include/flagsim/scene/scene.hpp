@@ -55,8 +55,14 @@ inline constexpr NameTable<FoldAxis, 2> kFoldAxisNames = {
 /// of rest angle `angle_rad` across the fibers it crosses ([creases]).
 struct Fold {
   FoldAxis axis = FoldAxis::kCol;
-  double at = 0.5;         ///< where, as a fraction (0..1) of the height (row) or width (col)
-  double angle_rad = 0.0;  ///< the crease's rest angle (0 flat, pi folded flat on itself)
+  double at = 0.5;  ///< where, as a fraction (0..1) of the height (row) or width (col)
+  /// The crease's rest angle, rad: positive toward the cloth's front (a valley
+  /// seen from it), negative toward the back; pi: folded flat on itself.
+  double angle_rad = 0.0;
+  /// The stretch of the line it runs along, fractions (0..1) of the width
+  /// (row) or height (col): a flag folded in four has its second fold a
+  /// valley on one side of the first and a mountain on the other.
+  double from = 0.0, to = 1.0;
 };
 
 struct FlagSpec {
