@@ -127,7 +127,8 @@ bool crease_gradient(const std::array<V3<S>, kStencil>& x, double s, double rest
   const S l1 = sqrt(e1.squaredNorm()), l2 = sqrt(e2.squaredNorm());
   const S m1 = sqrt(w1.squaredNorm()), m2 = sqrt(w2.squaredNorm());
   if (!(l1 > 0.0 && l2 > 0.0 && m1 > 0.0 && m2 > 0.0)) return false;
-  const V3<S> u1 = e1 / l1, u2 = e2 / l2, n1 = w1 / m1, n2 = w2 / m2;
+  const S il1 = 1.0 / l1, il2 = 1.0 / l2, im1 = 1.0 / m1, im2 = 1.0 / m2;
+  const V3<S> u1 = e1 * il1, u2 = e2 * il2, n1 = w1 * im1, n2 = w2 * im2;
   const double bend = std::cos(rest) - 1.0, turn = std::sin(rest);
   const V3<S> d1 = q - s * (bend * u1 + turn * n1), d2 = q - s * (-bend * u2 + turn * n2);
   energy = 0.25 * (d1.squaredNorm() + d2.squaredNorm()) - (0.5 * (1.0 - plain)) * q.squaredNorm();
@@ -136,9 +137,9 @@ bool crease_gradient(const std::array<V3<S>, kStencil>& x, double s, double rest
   const V3<S> g_u1 = (-0.5 * s * bend) * d1, g_n1 = (-0.5 * s * turn) * d1;
   const V3<S> g_u2 = (0.5 * s * bend) * d2, g_n2 = (-0.5 * s * turn) * d2;
   // A unit vector v / |v| passes g on as (g - v^ (v^ . g)) / |v|.
-  V3<S> g_e1 = (g_u1 - u1 * u1.dot(g_u1)) / l1 - g_q;
-  V3<S> g_e2 = (g_u2 - u2 * u2.dot(g_u2)) / l2 + g_q;
-  const V3<S> g_w1 = (g_n1 - n1 * n1.dot(g_n1)) / m1, g_w2 = (g_n2 - n2 * n2.dot(g_n2)) / m2;
+  V3<S> g_e1 = (g_u1 - u1 * u1.dot(g_u1)) * il1 - g_q;
+  V3<S> g_e2 = (g_u2 - u2 * u2.dot(g_u2)) * il2 + g_q;
+  const V3<S> g_w1 = (g_n1 - n1 * n1.dot(g_n1)) * im1, g_w2 = (g_n2 - n2 * n2.dot(g_n2)) * im2;
   // w = t x e: dw . g = dt . (e x g) + de . (g x t).
   const V3<S> g_t = e1.cross(g_w1) + e2.cross(g_w2);
   g_e1 += g_w1.cross(t);
