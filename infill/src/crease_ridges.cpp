@@ -201,4 +201,21 @@ const std::vector<double>& CreaseRidges::offsets(std::span<const Vec3> coarse_m,
   return offsets_;
 }
 
+void add_dense_ridges(CreaseRidges& ridges, const Lattice& fine, std::span<Vec3> positions_m,
+                      std::span<const std::uint8_t> held, std::vector<Vec3>& normals,
+                      std::vector<Vec3>& copy) {
+  copy.assign(positions_m.begin(), positions_m.end());
+  normals.resize(copy.size());
+  const NodeView at(fine, std::span<const Vec3>(copy));
+  for (int j = 0; j < fine.rows; ++j)
+    for (int k = 0; k < fine.cols; ++k) {
+      const Vec3 along_row = at.clamped(j, k + 1) - at.clamped(j, k - 1);
+      const Vec3 along_col = at.clamped(j + 1, k) - at.clamped(j - 1, k);
+      normals[fine.index(j, k)] = along_row.cross(along_col).normalized();
+    }
+  const std::vector<double>& offsets = ridges.offsets(copy, copy, normals);
+  for (std::size_t i = 0; i < positions_m.size(); ++i)
+    if (held.empty() || !held[i]) positions_m[i] += offsets[i] * normals[i];
+}
+
 }  // namespace flagsim::infill

@@ -39,10 +39,6 @@ std::optional<std::pair<const char*, std::string>> crease_problem(const Scene& s
                      std::string("fold lines are creases: they need [creases] (how a crease sets "
                                  "and relaxes; an empty table takes the defaults)")};
   if (!scene.creases) return std::nullopt;
-  if (scene.mode == Mode::kInfill)
-    return std::pair{"creases",
-                     std::string("infill mode has no creases yet: they are part of the physics "
-                                 "(scene.mode hybrid or a full-lattice mode)")};
   if (!scene.bending)
     return std::pair{"creases",
                      std::string("a crease is a rest angle of the cloth's bending: add [bending] "
@@ -109,8 +105,8 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
     const std::pair<bool, const char*> physics[] = {
         {scene.wind.has_value(), "wind"},
         {scene.pole.has_value() || scene.solid_pole.has_value(), "pole"},
-        {scene.bending.has_value(), "bending"},
-        {scene.creases.has_value(), "creases"},
+        // [bending] states a crease's rigidity ([creases]: the dense cloth's own creases).
+        {scene.bending.has_value() && !scene.creases.has_value(), "bending"},
         {root.table().contains("gravity"), "gravity"},
         {root.table().contains("solver"), "solver"}};
     for (const auto& [present, table] : physics)
@@ -122,8 +118,7 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
       scene.wind.reset();
       scene.pole.reset();
       scene.solid_pole.reset();
-      scene.bending.reset();
-      scene.creases.reset();
+      if (!scene.creases) scene.bending.reset();
       scene.flag.folds.clear();
       scene.gravity.reset();
       scene.solver = Solver{};

@@ -9,6 +9,7 @@
 #include "flagsim/coarse_physics/cloth_integrator.hpp"
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
+#include "flagsim/coarse_physics/creased_bending.hpp"
 #include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
@@ -155,7 +156,8 @@ std::optional<infill::WrinkleParams> wrinkle_params(const Scene& scene, const Ma
 // with [creases]), or nullopt.
 std::optional<infill::CreaseRidgeParams> crease_ridge_params(const Scene& scene,
                                                              const Material& material) {
-  if (scene.mode != Mode::kHybrid || !material.creased()) return std::nullopt;
+  if ((scene.mode != Mode::kHybrid && scene.mode != Mode::kInfill) || !material.creased())
+    return std::nullopt;
   return infill::CreaseRidgeParams{*material.bending_rigidity_j, material.creases->width_m,
                                    material.stretch_modulus_n_m};
 }
@@ -217,6 +219,10 @@ class DenseInfill {
   void set_creases(std::span<const double> coarse_rest_rad) {
     solver_->set_creases(coarse_rest_rad);
   }
+  /// The dense lattice's own crease rest angles (infill mode) for the next fills.
+  void set_dense_creases(std::span<const double> dense_rest_rad) {
+    solver_->set_dense_creases(dense_rest_rad);
+  }
   /// New dense lattice of frame `frame` from the coarse nodes [Jc*Kc];
   /// velocities over 1/fps. With solids ([pole] radius, [ground]) no dense
   /// node is left inside one: the infill does not undo the physics' contact.
@@ -273,11 +279,18 @@ class DenseInfill {
 };
 
 // mode "infill": no physics; the corners follow the keyframes and the whole
-// lattice comes from the paper's infill (Figs. 9-10).
+// lattice comes from the paper's infill (Figs. 9-10). With [creases] the
+// dense lattice keeps creases of its own: the plastic flow of
+// coarse_physics/creased_bending.hpp on its bending triples, from each filled
+// frame (a fold the corners hold past the yield for long enough sets), drawn
+// into the next frames as ridges (crease_ridges.hpp: add_dense_ridges). No
+// physics pulls them flat: they stay until the corners fold the cloth back.
 class InfillSimulation final : public Simulation {
  public:
   explicit InfillSimulation(std::shared_ptr<const Model> model)
-      : model_(std::move(model)), dense_(*model_, 2, 2) {
+      : model_(std::move(model)),
+        dense_(*model_, 2, 2),
+        creases_(physics::make_creased_bending(model_->scene(), model_->dense_cloth())) {
     dense_.hold_corners();  // the keyframes give them exactly
     fill(0.0, nullptr);     // frame 0: the corners of the first keyframe
     dense_.forget_velocities();
@@ -286,6 +299,7 @@ class InfillSimulation final : public Simulation {
   std::vector<std::string> effects() const override {
     std::vector<std::string> effects = {"keyframes"};
     dense_.add_effects(effects);
+    if (creases_) effects.emplace_back("creases");
     return effects;
   }
   std::vector<NamedNumber> numbers() const override { return {}; }
@@ -308,22 +322,33 @@ class InfillSimulation final : public Simulation {
     SimulationState state;
     state.frame = frame_;
     dense_.save(state);
+    // The dense creases' rest and held angles, where the physics keeps its own.
+    if (creases_) state.physics.memory.assign(creases_->memory().begin(), creases_->memory().end());
     return state;
   }
   void set_state(const SimulationState& state) override {
     check_state_size("the physics positions", state.physics.x_m.size(), 0);
+    check_state_size("the creases' memory (rest and held angles)", state.physics.memory.size(),
+                     creases_ ? creases_->memory().size() : 0);
     dense_.restore(state);
+    if (creases_) creases_->set_memory(state.physics.memory);
     frame_ = state.frame;
   }
 
  private:
   void fill(double time_s, StageTimes* times) {
     const auto corners = infill::corners_at(model_->scene().keyframes, time_s);
+    if (creases_) {  // the rest angles so far; this frame's plastic step after it
+      const std::span<const double> memory = creases_->memory();
+      dense_.set_dense_creases(memory.first(memory.size() / 2));
+    }
     dense_.fill(corners, frame_, times);
+    if (creases_) creases_->begin_frame(time_s, dense_.positions());
   }
 
   std::shared_ptr<const Model> model_;  ///< shared: the caller's Scene may go first
   DenseInfill dense_;
+  std::unique_ptr<physics::CreasedBending> creases_;  ///< [creases]: the dense lattice's own
   int frame_ = 0;
 };
 

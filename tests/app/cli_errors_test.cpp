@@ -130,6 +130,12 @@ const std::vector<BadInput>& cases() {
        "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n",
        {"run", "SCENE"},
        "wind: infill mode has no physics"},
+      {"infill_mode_with_bending_but_no_creases",
+       "[scene]\nmode = \"infill\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\nfine = [9, 13]\n"
+       "[bending]\nstiffness = 1e-4\n[[keyframe]]\ntime = 0.0\ncorners = "
+       "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n",
+       {"run", "SCENE"},
+       "bending: infill mode has no physics"},
       {"infill_mode_without_keyframes",
        kBase,
        {"run", "SCENE", "--mode", "infill"},

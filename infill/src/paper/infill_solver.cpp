@@ -1,6 +1,7 @@
 #include "flagsim/infill/paper/infill_solver.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <optional>
 
@@ -14,12 +15,15 @@
 namespace flagsim::infill {
 
 InfillSolver::InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps,
-                           std::optional<WrinkleParams> wrinkles, int rounds)
+                           std::optional<WrinkleParams> wrinkles, int rounds,
+                           std::optional<CreaseRidgeParams> creases)
     : lattice_(fine),
       grid_(grid),
       relax_sweeps_(relax_sweeps),
       wrinkles_(wrinkles),
-      rounds_(rounds) {
+      rounds_(rounds),
+      crease_params_(creases) {
+  if (crease_params_) unridged_.assign(fine.node_count(), Vec3::Zero());
   const int rs = grid.row_stride, cs = grid.col_stride, cols = fine.cols;
   held_.assign(fine.node_count(), 0);
   for (int jc = 0; jc < grid.coarse_rows; ++jc) {
@@ -75,6 +79,31 @@ void InfillSolver::register_stages(StageTimes& times) {
   stages_.length = times.add("infill_3.3", StageGroup::kInfill);
   stages_.relax = times.add("infill_3.4", StageGroup::kInfill);
   if (wrinkles_) stages_.wrinkles = times.add("infill_3.5", StageGroup::kInfill);
+  if (crease_params_) stages_.creases = times.add("infill_creases", StageGroup::kInfill);
+}
+
+void InfillSolver::set_dense_creases(std::span<const double> dense_rest_rad) {
+  if (!crease_params_) return;  // made without [creases]: draws none
+  if (!dense_creases_)
+    dense_creases_.emplace(lattice_, CellGrid::of(lattice_, lattice_.rows, lattice_.cols),
+                           *crease_params_);
+  dense_creases_->set_rest(dense_rest_rad);
+}
+
+std::vector<double> InfillSolver::memory() const {
+  if (!crease_params_) return {};
+  std::vector<double> memory = {ridged_ ? 1.0 : 0.0};
+  memory.reserve(1 + 3 * unridged_.size());
+  for (const Vec3& p : unridged_) memory.insert(memory.end(), {p.x(), p.y(), p.z()});
+  return memory;
+}
+
+void InfillSolver::set_memory(std::span<const double> memory) {
+  if (!crease_params_) return;
+  assert(memory.size() == 1 + 3 * unridged_.size());
+  ridged_ = memory[0] != 0.0;
+  for (std::size_t i = 0; i < unridged_.size(); ++i)
+    unridged_[i] = Vec3(memory[1 + 3 * i], memory[2 + 3 * i], memory[3 + 3 * i]);
 }
 
 std::size_t InfillSolver::cell_corner_of(std::size_t node) const {
@@ -111,6 +140,8 @@ void InfillSolver::rewrinkle(std::span<Vec3> positions_m) {
 
 void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
                         StageTimes* times) {
+  // The last fill's ridges off: the lattice it carries is the one before them.
+  if (ridged_) std::copy(unridged_.begin(), unridged_.end(), positions_m.begin());
   double largest_motion = 0.0;
   for (std::size_t c = 0; c < coarse_dense_.size(); ++c) {
     coarse_start_[c] = positions_m[coarse_dense_[c]];
@@ -129,6 +160,19 @@ void InfillSolver::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
       coarse_step_[c] =
           s == steps ? coarse_m[c] : Vec3(coarse_start_[c] + t * (coarse_m[c] - coarse_start_[c]));
     deform(coarse_step_, positions_m, times);
+  }
+  ridged_ = dense_creases_ && dense_creases_->any();
+  if (ridged_) {
+    std::copy(positions_m.begin(), positions_m.end(), unridged_.begin());
+    run_timed(times, stages_.creases, [&] {
+      add_dense_ridges(*dense_creases_, lattice_, positions_m, held_, dense_normals_, dense_copy_);
+    });
+    run_timed(times, stages_.relax, [&] {  // 3.4: the fibers keep their lengths
+      const int sweeps =
+          relax_lattice(lattice_, held_, positions_m, relax_sweeps_, kRelaxTolerance);
+      last_sweeps_ += sweeps;
+      capped_ = capped_ || sweeps >= relax_sweeps_;
+    });
   }
   report_.converged = !capped_;
   report_.iterations = last_sweeps_;

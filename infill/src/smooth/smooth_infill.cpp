@@ -31,6 +31,7 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
   for (int k = 0; k < fine.cols; ++k)
     col_node_taps_.push_back(taps_at(double(k) / grid.col_stride, grid.coarse_cols));
   if (creases) creases_.emplace(fine, grid, *creases);
+  crease_params_ = creases;
   if (wrinkles_ || creases_) normals_.resize(fine.node_count());
   if (wrinkles_) {
     last_offset_.assign(fine.node_count(), 0.0);
@@ -165,6 +166,14 @@ void SmoothInfill::register_stages(StageTimes& times) {
   stages_.projection = times.add("infill_3.4", StageGroup::kInfill);
   if (wrinkles_) stages_.wrinkles = times.add("infill_3.5", StageGroup::kInfill);
   if (creases_) stages_.creases = times.add("infill_creases", StageGroup::kInfill);
+}
+
+void SmoothInfill::set_dense_creases(std::span<const double> dense_rest_rad) {
+  if (!crease_params_) return;  // made without [creases]: draws none
+  if (!dense_creases_)
+    dense_creases_.emplace(lattice_, CellGrid::of(lattice_, lattice_.rows, lattice_.cols),
+                           *crease_params_);
+  dense_creases_->set_rest(dense_rest_rad);
 }
 
 void SmoothInfill::set_normals() {
@@ -339,13 +348,20 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   };
   // The crease lines' ridges, laid on before the last projection (the wrinkles'
   // re-lay would replace them): crease_ridges.hpp.
-  const bool ridges = creases_ && creases_->any();
+  const bool coarse_ridges = creases_ && creases_->any();
+  const bool dense_ridges = dense_creases_ && dense_creases_->any();
+  const bool ridges = coarse_ridges || dense_ridges;
   const auto add_ridges = [&] {
     run_timed(times, stages_.creases, [&] {
-      if (!wrinkles_) set_normals();  // else 3.5 has just set them
-      const std::vector<double>& offsets = creases_->offsets(coarse_m, surface_, normals_);
-      for (std::size_t i = 0; i < positions_m.size(); ++i)
-        if (!held_[i]) positions_m[i] += offsets[i] * normals_[i];  // the pole holds its edge
+      if (coarse_ridges) {
+        if (!wrinkles_) set_normals();  // else 3.5 has just set them
+        const std::vector<double>& offsets = creases_->offsets(coarse_m, surface_, normals_);
+        for (std::size_t i = 0; i < positions_m.size(); ++i)
+          if (!held_[i]) positions_m[i] += offsets[i] * normals_[i];  // the pole holds its edge
+      }
+      if (dense_ridges)
+        add_dense_ridges(*dense_creases_, lattice_, positions_m, held_, dense_normals_,
+                         dense_copy_);
     });
   };
   if (ridges && !wrinkles_) add_ridges();

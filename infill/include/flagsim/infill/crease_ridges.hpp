@@ -40,6 +40,7 @@
 // shows half or less (there the turning across the line is the cloth's own
 // waves, which a flattened crease does not gather): the blend
 // clamp(2 theta_c / theta_r - 1, 0, 1).
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -54,6 +55,16 @@ struct CreaseRidgeParams {
   double width_m = 1.0e-3;             ///< w, the hinge ([creases] width)
   double stretch_modulus_n_m = 2.0e4;  ///< Y, for the tension (flag.stretch_modulus)
 };
+
+/// Infill mode's creases, on the dense lattice itself: `ridges` made on
+/// CellGrid::of(fine, J, K) (a grid of one dense cell a cell, so each dense
+/// triple's rest angle is a "coarse" one), their offsets laid on `positions_m`
+/// along its own normals (row tangent x column tangent), what the cloth
+/// already shows of each crease read from `positions_m` itself. Nodes `held`
+/// (the keyframed corners) stay. `normals` and `copy` are scratch [J*K].
+void add_dense_ridges(class CreaseRidges& ridges, const Lattice& fine, std::span<Vec3> positions_m,
+                      std::span<const std::uint8_t> held, std::vector<Vec3>& normals,
+                      std::vector<Vec3>& copy);
 
 class CreaseRidges {
  public:

@@ -36,7 +36,8 @@ struct InfillOptions {
   int relax_sweeps = 1000;  ///< the paper solver's 3.4 cap
   std::optional<WrinkleParams> wrinkles;
   int wrinkle_rounds = 2;  ///< 3.5/3.4 alternations (paper solver)
-  /// [creases]: the coarse physics' crease lines drawn as ridges (smooth solver)
+  /// [creases]: the coarse physics' crease lines drawn as ridges (smooth solver),
+  /// or in infill mode the dense lattice's own (both solvers)
   std::optional<CreaseRidgeParams> creases;
 };
 
@@ -57,6 +58,10 @@ class InfillMethod {
   /// order), given before each fill with [creases]; a solver that draws no
   /// crease lines ignores them.
   virtual void set_creases(std::span<const double> /*coarse_rest_rad*/) {}
+  /// The dense lattice's own crease rest angles (its bending triples' order:
+  /// infill mode, where no physics holds them), given before each fill; a
+  /// solver made without crease parameters ignores them.
+  virtual void set_dense_creases(std::span<const double> /*dense_rest_rad*/) {}
   /// What a fill carries into the next besides the dense positions (the
   /// smooth solver's 3.5 offsets along the normals [J*K], m, with wrinkles);
   /// empty when nothing is. set_memory takes what memory() gave.

@@ -61,8 +61,11 @@ class InfillSolver final : public InfillMethod {
   /// @param relax_sweeps  most passes of 3.4 per deformation step ([infill] relax_iterations)
   /// @param wrinkles      step 3.5, or nullopt to leave it out (no [wrinkles] table)
   /// @param rounds        3.5/3.4 alternations per deformation step
+  /// @param creases       with [creases] in infill mode: the dense lattice's own
+  ///                      creases drawn as ridges (set_dense_creases), or nullopt
   InfillSolver(const Lattice& fine, const CellGrid& grid, int relax_sweeps,
-               std::optional<WrinkleParams> wrinkles = std::nullopt, int rounds = 2);
+               std::optional<WrinkleParams> wrinkles = std::nullopt, int rounds = 2,
+               std::optional<CreaseRidgeParams> creases = std::nullopt);
 
   /// Holds these dense nodes ([J*K], 1 = held) in 3.4 as well as the coarse
   /// ones: the pinned nodes of a physics-driven cloth, which lie on coarse
@@ -81,6 +84,14 @@ class InfillSolver final : public InfillMethod {
   int last_deformation_steps() const { return last_steps_; }
   int last_relax_sweeps() const { return last_sweeps_; }
   const CellGrid& grid() const override { return grid_; }
+  /// Infill mode's creases (crease_ridges.hpp: add_dense_ridges), laid on after
+  /// the last deformation step and relaxed once more (3.4). The lattice carried
+  /// to the next fill is the one before them, so they do not pile up frame on
+  /// frame: memory() holds it (1 then [J*K] x 3 positions, m; 0 first when
+  /// none was laid), empty without [creases].
+  void set_dense_creases(std::span<const double> dense_rest_rad) override;
+  std::vector<double> memory() const override;
+  void set_memory(std::span<const double> memory) override;
 
  private:
   void deform(std::span<const Vec3> coarse_target_m, std::span<Vec3> positions_m,
@@ -96,6 +107,11 @@ class InfillSolver final : public InfillMethod {
   int relax_sweeps_;
   std::optional<WrinkleParams> wrinkles_;
   int rounds_;
+  std::optional<CreaseRidgeParams> crease_params_;
+  std::optional<CreaseRidges> dense_creases_;
+  std::vector<Vec3> unridged_;  ///< [J*K] the last fill before its ridges
+  bool ridged_ = false;         ///< whether the last fill laid ridges on unridged_
+  std::vector<Vec3> dense_normals_, dense_copy_;  ///< add_dense_ridges' scratch
   /// A cell edge, with the dense indices of the coarse nodes one cell before
   /// its start and one cell after its end on the same coarse line (-1: none).
   struct Edge {
@@ -115,7 +131,7 @@ class InfillSolver final : public InfillMethod {
   std::vector<Vec3> coarse_start_, coarse_step_;
   /// Columns of the frame's StageTimes, one per step (-1: not timed).
   struct Stages {
-    int boundary = -1, initial_move = -1, length = -1, relax = -1, wrinkles = -1;
+    int boundary = -1, initial_move = -1, length = -1, relax = -1, wrinkles = -1, creases = -1;
   } stages_;
   int last_steps_ = 0, last_sweeps_ = 0;
   bool capped_ = false;  ///< some 3.4 call of the last fill() ran to its cap

@@ -156,6 +156,7 @@ class SmoothInfill final : public InfillMethod {
   void set_creases(std::span<const double> coarse_rest_rad) override {
     if (creases_) creases_->set_rest(coarse_rest_rad);
   }
+  void set_dense_creases(std::span<const double> dense_rest_rad) override;
 
  private:
   /// 3.3: every link's band from the coarse links it lies between.
@@ -196,6 +197,9 @@ class SmoothInfill final : public InfillMethod {
   } stages_;
   std::optional<WrinkleParams> wrinkles_;
   std::optional<CreaseRidges> creases_;  ///< the crease lines' ridges ([creases])
+  std::optional<CreaseRidgeParams> crease_params_;
+  std::optional<CreaseRidges> dense_creases_;     ///< infill mode's, at dense resolution
+  std::vector<Vec3> dense_normals_, dense_copy_;  ///< add_dense_ridges' scratch
   std::vector<Vec3> surface_;  ///< this frame's mean surface (3.1), read by 3.5 and the level above
   bool smooths_ = false;       ///< this level runs the kSmoothingCycles (set by the finest level)
   std::vector<Vec3> correction_, smoothed_;  ///< smooth_correction's work buffers
