@@ -219,11 +219,15 @@ void BulletCloth::project_contacts(double time_s) {
   const std::size_t n = rest_m_.size();
   contact_x_.resize(n);
   contact_v_.resize(n);
+  const bool self_contact = obstacles_->self_contact();
+  contact_start_.resize(self_contact ? n : 0);
   for (std::size_t i = 0; i < n; ++i) {
     contact_x_[i] = from_bt(body.m_nodes[int(i)].m_x);
     contact_v_[i] = from_bt(body.m_nodes[int(i)].m_v);
+    if (self_contact) contact_start_[i] = from_bt(body.m_nodes[int(i)].m_q);  // the step's start
   }
-  if (obstacles_->project(time_s, contact_x_, contact_v_, model_->pinned) == 0) return;
+  if (obstacles_->project(time_s, contact_x_, contact_v_, model_->pinned, {}, contact_start_) == 0)
+    return;
   for (std::size_t i = 0; i < n; ++i) {
     if (model_->pinned[i]) continue;
     body.m_nodes[int(i)].m_x = to_bt(contact_x_[i]);

@@ -317,7 +317,7 @@ void ImplicitEuler::step(double dt_s, StageTimes* times) {
       state_.x_m[i] = x0_[i] + h * v[i];
     }
   }
-  if (obstacles_) obstacles_->project(next_time, state_.x_m, v, model_->pinned);
+  if (obstacles_) obstacles_->project(next_time, state_.x_m, v, model_->pinned, {}, x0_);
   state_.time_s = next_time;
 }
 

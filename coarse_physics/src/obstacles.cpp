@@ -36,6 +36,14 @@ std::optional<Obstacles> Obstacles::of(const Scene& scene) {
 
 std::optional<Obstacles> Obstacles::of(const Scene& scene, const Lattice& lattice) {
   std::optional<Obstacles> obstacles = of(scene);
+  if (scene.contact) {
+    if (!obstacles) obstacles = Obstacles();
+    // A lattice holds no fold tighter than about a quarter of its spacing:
+    // its layers are kept that far apart, the cloth's thickness at least.
+    const double held = std::max(scene.contact->thickness_m,
+                                 0.25 * std::min(lattice.spacing_x_m, lattice.spacing_y_m));
+    obstacles->self_.emplace(lattice, held);
+  }
   if (!obstacles || !obstacles->pole_) return obstacles;
   auto& links = obstacles->links_;
   // Rows, columns and both diagonals: the diagonals keep a cell's middle out.
@@ -98,8 +106,16 @@ int Obstacles::project_links(const Vec3& axis_m, const Vec3& pole_v_m_s, std::sp
 }
 
 int Obstacles::project(double time_s, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
-                       std::span<const std::uint8_t> pinned,
-                       std::span<const Vec3> came_from_m) const {
+                       std::span<const std::uint8_t> pinned, std::span<const Vec3> came_from_m,
+                       std::span<const Vec3> step_start_m) {
+  int moved = project_solids(time_s, x_m, v_m_s, pinned, came_from_m);
+  if (self_) moved += self_->project(x_m, v_m_s, pinned, step_start_m);
+  return moved;
+}
+
+int Obstacles::project_solids(double time_s, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+                              std::span<const std::uint8_t> pinned,
+                              std::span<const Vec3> came_from_m) const {
   int moved = 0;
   const bool velocities = !v_m_s.empty();
   Vec3 axis = Vec3::Zero(), pole_v = Vec3::Zero();
@@ -155,10 +171,11 @@ int Obstacles::project(double time_s, std::span<Vec3> x_m, std::span<Vec3> v_m_s
 int Obstacles::settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m,
                       std::span<const std::uint8_t> fixed, std::span<const Vec3> came_from_m,
                       int rounds, int reach) const {
-  assert(links_.empty());  // node contact only: the per-row projections below index by row
+  // Node contact only: the per-row projections below index by row.
+  assert(links_.empty() && !self_);
   // Which nodes the projection moves: their box, widened by `reach`.
   std::vector<Vec3> before(x_m.begin(), x_m.end());
-  const int moved = project(time_s, x_m, {}, fixed, came_from_m);
+  const int moved = project_solids(time_s, x_m, {}, fixed, came_from_m);
   if (moved == 0 || rounds <= 0) return moved;
   int j0 = lattice.rows, j1 = -1, k0 = lattice.cols, k1 = -1;
   for (int j = 0; j < lattice.rows; ++j) {
@@ -205,7 +222,7 @@ int Obstacles::settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m
       }
     }
     for (int j = ja; j <= jb; ++j)
-      project(time_s, row_part(x_m, j), {}, row_part(fixed, j), row_part(came_from_m, j));
+      project_solids(time_s, row_part(x_m, j), {}, row_part(fixed, j), row_part(came_from_m, j));
   }
   return moved;
 }

@@ -74,6 +74,8 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
     const Vec3 pin_velocity = model_->pin_motion.velocity_m_s(next_time);
     const double damping = model_->velocity_damping(dt_s);
     const std::size_t n = state.x_m.size();
+    if (obstacles_ && obstacles_->self_contact())
+      step_start_m_.assign(state.x_m.begin(), state.x_m.end());
     for (std::size_t i = 0; i < n; ++i) {
       if (model_->pinned[i]) {
         state.x_m[i] = rest_m_[i] + pin_offset;
@@ -89,7 +91,8 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
       state.x_m[node] = where_(i, next_time);
       state.v_m_s[node] = (state.x_m[node] - before) / dt_s;
     }
-    if (obstacles_) obstacles_->project(next_time, state.x_m, state.v_m_s, model_->pinned);
+    if (obstacles_)
+      obstacles_->project(next_time, state.x_m, state.v_m_s, model_->pinned, {}, step_start_m_);
     state.time_s = next_time;
   };
   laps.run(update_stage_, update);

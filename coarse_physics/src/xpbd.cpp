@@ -131,12 +131,15 @@ void Xpbd::step(double dt_s, StageTimes* times) {
   run_timed(times, update_stage_, [&] {
     const Vec3 pin_velocity = model_->pin_motion.velocity_m_s(next_time);
     const double inverse_h = 1.0 / h;
+    if (obstacles_ && obstacles_->self_contact())
+      step_start_m_.assign(state_.x_m.begin(), state_.x_m.end());
     for (std::size_t i = 0; i < n; ++i) {
       state_.v_m_s[i] =
           model_->pinned[i] ? pin_velocity : Vec3((predicted_[i] - state_.x_m[i]) * inverse_h);
       state_.x_m[i] = predicted_[i];
     }
-    if (obstacles_) obstacles_->project(next_time, state_.x_m, state_.v_m_s, model_->pinned);
+    if (obstacles_)
+      obstacles_->project(next_time, state_.x_m, state_.v_m_s, model_->pinned, {}, step_start_m_);
   });
   state_.time_s = next_time;
 }

@@ -108,6 +108,7 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
         // [bending] states a crease's rigidity ([creases]: the dense cloth's own creases).
         {scene.bending.has_value() && !scene.creases.has_value(), "bending"},
         {root.table().contains("gravity"), "gravity"},
+        {scene.contact.has_value(), "contact"},  // self-contact is the physics'
         {root.table().contains("solver"), "solver"}};
     for (const auto& [present, table] : physics)
       if (present)
@@ -121,6 +122,7 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
       if (!scene.creases) scene.bending.reset();
       scene.flag.folds.clear();
       scene.gravity.reset();
+      scene.contact.reset();
       scene.solver = Solver{};
     }
     if (flag.coarse && (*flag.coarse)[0] * (*flag.coarse)[1] != 4)
@@ -132,6 +134,11 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
         "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
     scene.keyframes.clear();
   }
+  if (scene.mode == Mode::kHybrid && scene.contact)
+    fail_at(root, "contact",
+            "self-contact runs in the full-lattice modes (mass-spring, implicit, xpbd, bullet); "
+            "in hybrid mode the dense lattice the infill lays can still cross itself where the "
+            "coarse cloth folds tightly (docs/methods.md): choose a full-lattice scene.mode");
   if (is_full_lattice(scene.mode) && scene.infill) {
     unused_table("infill",
                  "[infill] settings need a mode with the infill (\"hybrid\" or \"infill\")");

@@ -54,6 +54,9 @@ constexpr KeyMeaning kMeanings[] = {
     {"pole.friction", "Coulomb friction of the cloth on the solid pole"},
     {"ground.height", "a solid horizontal plane at this y that no node goes below"},
     {"ground.friction", "Coulomb friction of the cloth on the ground"},
+    {"contact.thickness",
+     "self-contact (full-lattice modes): parts of the cloth not neighbours in it (2 thicknesses "
+     "apart at rest) stay this far apart, or a quarter of the lattice's spacing if more"},
     {"gravity.acceleration", "gravity; without [gravity] there is none"},
     {"wind.velocity", "mean wind; without [wind] there is none"},
     {"wind.drag", "normal-force coefficient of a flat plate"},
@@ -150,6 +153,7 @@ std::pair<std::string, std::string> split_key(const std::string& key) {
 bool table_present(const Scene& scene, const std::string& table) {
   if (table == "pole") return scene.pole.has_value() || scene.solid_pole.has_value();
   if (table == "ground") return scene.ground.has_value();
+  if (table == "contact") return scene.contact.has_value();
   if (table == "gravity") return scene.gravity.has_value();
   if (table == "wind" || table.starts_with("wind.")) return scene.wind.has_value();
   if (table == "bending") return scene.bending.has_value();
@@ -231,7 +235,9 @@ std::string keys_reference() {
       "corners = [[0.0, 2.0, 0.0], [1.5, 2.0, 0.0], [0.0, 1.0, 0.0], [1.5, 1.0, 0.0]]\n";
   std::map<std::string, SceneKey, std::less<>> read;
   const std::string solid_pole = "[pole]\nradius = 0.03\n";  // the keys of a standing pole
-  for (const std::string& text : {std::string(), every_table, infill, solid_pole}) {
+  // Self-contact: the full-lattice modes' (scene_checks.cpp).
+  const std::string contact = "[scene]\nmode = \"mass-spring\"\n[contact]\n";
+  for (const std::string& text : {std::string(), every_table, infill, solid_pole, contact}) {
     std::vector<SceneKey> keys;
     parse_scene(text, "<keys>", std::span<const Override>(), &keys);
     for (const SceneKey& k : keys)

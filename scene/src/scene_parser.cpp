@@ -62,6 +62,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "pole.friction",
                                          "ground.height",
                                          "ground.friction",
+                                         "contact.thickness",
                                          "gravity.acceleration",
                                          "wind.velocity",
                                          "wind.drag",
@@ -308,6 +309,13 @@ void read_effect_tables(TableReader& root, Scene& scene) {
     ground.friction = in.real("friction", ground.friction, Bound::between(0.0, 10.0), "1");
     in.finish(kAllKeys);
     scene.ground = ground;
+  }
+  if (const toml::table* t = root.subtable("contact")) {
+    TableReader in(*t, "contact", root.where_of("contact"));
+    Contact contact;
+    contact.thickness_m = in.real("thickness", contact.thickness_m, Bound{0.0, 1.0, true}, "m");
+    in.finish(kAllKeys);
+    scene.contact = contact;
   }
   if (const toml::table* t = root.subtable("gravity")) {
     TableReader in(*t, "gravity", root.where_of("gravity"));

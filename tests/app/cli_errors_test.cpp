@@ -136,6 +136,16 @@ const std::vector<BadInput>& cases() {
        "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n",
        {"run", "SCENE"},
        "bending: infill mode has no physics"},
+      {"self_contact_in_hybrid_mode",
+       with("[contact]\nthickness = 0.005\n"),
+       {"run", "SCENE", "--mode", "hybrid", "--set", "flag.coarse=[5,7]"},
+       "contact: self-contact runs in the full-lattice modes"},
+      {"self_contact_in_infill_mode",
+       "[scene]\nmode = \"infill\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\nfine = [9, 13]\n"
+       "[contact]\n[[keyframe]]\ntime = 0.0\ncorners = "
+       "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n",
+       {"run", "SCENE"},
+       "contact: infill mode has no physics"},
       {"infill_mode_without_keyframes",
        kBase,
        {"run", "SCENE", "--mode", "infill"},

@@ -26,7 +26,7 @@ TEST(Obstacles, NoneWithoutSolids) {
 
 TEST(Obstacles, ANodeInsideThePoleGoesToItsSurfaceAndLosesItsSpeedIntoIt) {
   // Axis at x = -0.1, z = 0; the pinned edge (x = 0) on its surface.
-  const auto solids = Obstacles::of(scene_with(SolidPole{0.1, 0.5}, std::nullopt));
+  auto solids = Obstacles::of(scene_with(SolidPole{0.1, 0.5}, std::nullopt));
   ASSERT_TRUE(solids.has_value());
   std::vector<Vec3> x = {Vec3(0.0, 1.5, 0.0),           // 0.1 from the axis: on the surface
                          Vec3(-0.1 + 0.03, 1.2, 0.04),  // 0.05 from it: inside
@@ -60,7 +60,7 @@ TEST(Obstacles, ANodeInsideThePoleGoesToItsSurfaceAndLosesItsSpeedIntoIt) {
 }
 
 TEST(Obstacles, TheGroundStopsAFallAndFrictionSlowsTheSlide) {
-  const auto solids = Obstacles::of(scene_with(std::nullopt, Ground{0.5, 0.25}));
+  auto solids = Obstacles::of(scene_with(std::nullopt, Ground{0.5, 0.25}));
   std::vector<Vec3> x = {Vec3(1.0, 0.4, 0.0), Vec3(1.0, 0.6, 0.0)};
   std::vector<Vec3> v = {Vec3(2.0, -4.0, 0.0), Vec3(0.0, -4.0, 0.0)};
   EXPECT_EQ(solids->project(0.0, x, v, {}), 1);
@@ -70,7 +70,7 @@ TEST(Obstacles, TheGroundStopsAFallAndFrictionSlowsTheSlide) {
 }
 
 TEST(Obstacles, PinnedNodesAreLeftWhereTheyAre) {
-  const auto solids = Obstacles::of(scene_with(SolidPole{0.1, 0.3}, Ground{1.0, 0.5}));
+  auto solids = Obstacles::of(scene_with(SolidPole{0.1, 0.3}, Ground{1.0, 0.5}));
   std::vector<Vec3> x = {Vec3(-0.1, 0.5, 0.0), Vec3(-0.1, 0.5, 0.0)};
   std::vector<Vec3> v(2, Vec3::Zero());
   const std::vector<std::uint8_t> pinned = {1, 0};
@@ -83,7 +83,7 @@ TEST(Obstacles, PinnedNodesAreLeftWhereTheyAre) {
 TEST(Obstacles, AShakenPoleMovesWithItsPins) {
   Scene scene = scene_with(SolidPole{0.1, 0.0}, std::nullopt);
   scene.pole = PoleMotion{Vec3::UnitZ(), 0.2, 1.0};  // z = 0.2 sin(2 pi t)
-  const auto solids = Obstacles::of(scene);
+  auto solids = Obstacles::of(scene);
   const Vec3 at_quarter(-0.1, 1.0, 0.2 - 0.05);  // 5 cm from the axis at t = 1/4 s
   EXPECT_NEAR(solids->depth_m(0.25, at_quarter), 0.05, 1e-12);
   EXPECT_EQ(solids->depth_m(0.0, at_quarter), 0.0);
@@ -104,7 +104,7 @@ TEST(Obstacles, ALinkThroughThePoleIsPushedOutAndCounted) {
   scene.flag.fine_rows = 2;
   scene.flag.fine_cols = 2;
   const Lattice lattice = Lattice::rectangle(2, 2, 1.0, 1.0, scene.flag.origin_m);
-  const auto solids = Obstacles::of(scene, lattice);
+  auto solids = Obstacles::of(scene, lattice);
   ASSERT_TRUE(solids.has_value());
   // Axis at x = -0.1, z = 0. Nodes 0 and 1 (a row link) on either side of the
   // pole, 0.15 m from the axis, their segment 0.05 m from it; nodes 2 and 3 far.

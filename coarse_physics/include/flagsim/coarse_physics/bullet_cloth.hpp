@@ -82,6 +82,7 @@ class BulletCloth final : public ClothIntegrator {
   /// [pole] radius, [ground]: Bullet's nodes out of the solids after a substep.
   void project_contacts(double time_s);
   std::vector<Vec3> contact_x_, contact_v_;  ///< scratch of project_contacts
+  std::vector<Vec3> contact_start_;          ///< [contact]: the substep's start (Bullet's m_q)
 
   std::shared_ptr<const ClothModel> model_;  ///< never null
   std::optional<Obstacles> obstacles_;       ///< [pole] radius, [ground]: projected after each step

@@ -16,6 +16,11 @@
 // rather than as chords through it, and the dense lattice the infill lays
 // along those chords stays outside. The ground needs no link pass (a segment
 // whose ends are above a plane is above it).
+//
+// With [contact] (the full-lattice modes) the physics' projection also keeps
+// the cloth's non-neighbouring parts apart (self_contact.hpp): at least the
+// thickness, and at least a quarter of the lattice's spacing, the tightest
+// fold a lattice can hold.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -23,6 +28,7 @@
 #include <vector>
 
 #include "flagsim/coarse_physics/pin_motion.hpp"
+#include "flagsim/coarse_physics/self_contact.hpp"
 #include "flagsim/core/lattice.hpp"
 #include "flagsim/core/vec3.hpp"
 #include "flagsim/scene/scene.hpp"
@@ -34,8 +40,9 @@ class Obstacles {
   /// The scene's solids, or nullopt when it has none (then nothing runs: the
   /// frames are the bits of before).
   static std::optional<Obstacles> of(const Scene& scene);
-  /// The same, keeping the links of `lattice` (rows, columns, both diagonals)
-  /// out of the pole as well as its nodes.
+  /// The physics' contact on `lattice`: the solids, keeping its links (rows,
+  /// columns, both diagonals) out of the pole as well as its nodes, and with
+  /// [contact] its self-contact; nullopt when the scene has none of them.
   static std::optional<Obstacles> of(const Scene& scene, const Lattice& lattice);
 
   /// Projects the nodes not `pinned` (all when it is empty) out of the solids at
@@ -47,8 +54,15 @@ class Obstacles {
   /// goes out on the side it came from, not the side nearest to it (a lattice
   /// laid anew each frame, like the infill's, may put neighbours on either
   /// side of the axis, and they must not come out on opposite sides).
+  /// With [contact], then keeps the cloth's parts `thickness` apart
+  /// (self_contact.hpp), each node on the side of each triangle it was on in
+  /// `step_start_m` [n] (the positions the step began from; empty: the side
+  /// it is on now); the pushes are counted in the return value too.
   int project(double time_s, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
-              std::span<const std::uint8_t> pinned, std::span<const Vec3> came_from_m = {}) const;
+              std::span<const std::uint8_t> pinned, std::span<const Vec3> came_from_m = {},
+              std::span<const Vec3> step_start_m = {});
+  /// Whether a step must keep its start for project() ([contact]).
+  bool self_contact() const { return self_.has_value(); }
 
   /// A lattice laid anew each frame (the infill's dense one), at time t, m:
   /// projects its nodes not `fixed` out of the solids as project() does, then,
@@ -59,7 +73,8 @@ class Obstacles {
   /// the box stay put). So the excess length a fiber has between coarse nodes
   /// that a solid cuts goes round the solid instead of into a stretch.
   /// Returns the number of nodes the first projection moved. For Obstacles
-  /// made by of(scene) (nodes only, no links).
+  /// made by of(scene) (the solids' nodes only: no links, no self-contact,
+  /// which is the full-lattice modes' physics alone).
   int settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m,
              std::span<const std::uint8_t> fixed, std::span<const Vec3> came_from_m, int rounds,
              int reach) const;
@@ -68,8 +83,13 @@ class Obstacles {
   double depth_m(double time_s, const Vec3& x_m) const;
 
  private:
+  /// project() without the self-contact: the solids alone.
+  int project_solids(double time_s, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+                     std::span<const std::uint8_t> pinned, std::span<const Vec3> came_from_m) const;
+
   std::optional<SolidPole> pole_;
   std::optional<Ground> ground_;
+  std::optional<SelfContact> self_;  ///< [contact]
   /// Pushes the links that cut the pole's disc out of it (see the top).
   int project_links(const Vec3& axis_m, const Vec3& pole_v_m_s, std::span<Vec3> x_m,
                     std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned) const;

@@ -79,6 +79,7 @@ class SpringDamperSolver {
  private:
   std::shared_ptr<const ClothModel> model_;  ///< never null
   std::optional<Obstacles> obstacles_;       ///< [pole] radius, [ground]: projected after each step
+  std::vector<Vec3> step_start_m_;           ///< [contact]: the positions a substep began from
   ClothState initial_;
   std::vector<Vec3> rest_m_;
   std::vector<double> inverse_mass_;

@@ -99,6 +99,7 @@ class Xpbd final : public ClothIntegrator {
 
   std::shared_ptr<const ClothModel> model_;  ///< never null
   std::optional<Obstacles> obstacles_;       ///< [pole] radius, [ground]: projected after each step
+  std::vector<Vec3> step_start_m_;           ///< [contact]: the positions a substep began from
   std::vector<Vec3> rest_m_;
   std::vector<double> inverse_mass_;               ///< [J*K] 0 on pinned nodes, 1/kg
   std::vector<std::unique_ptr<ForceTerm>> terms_;  ///< gravity, wind: explicit

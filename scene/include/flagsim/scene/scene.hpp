@@ -110,6 +110,15 @@ struct Ground {
   double friction = 0.5;  ///< Coulomb coefficient, fabric on pavement or grass
 };
 
+/// [contact]: self-contact (coarse_physics/self_contact.hpp): every node of the
+/// cloth stays at least `thickness` from every triangle of it, and every edge
+/// from every edge, that is not its neighbour (closer than 2 thicknesses at
+/// rest). Inelastic and frictionless. In the full-lattice modes only: the
+/// hybrid's dense lattice can still cross itself (scene_checks.cpp refuses it).
+struct Contact {
+  double thickness_m = 0.005;
+};
+
 struct Gravity {
   Vec3 acceleration_m_s2 = Vec3(0.0, -9.81, 0.0);
 };
@@ -314,6 +323,7 @@ struct Scene {
   std::optional<PoleMotion> pole;       ///< [pole] with motion keys (or none at all)
   std::optional<SolidPole> solid_pole;  ///< [pole] radius
   std::optional<Ground> ground;
+  std::optional<Contact> contact;  ///< [contact]: self-contact
   std::optional<Gravity> gravity;  ///< absent, or present with zero acceleration: none
   std::optional<Wind> wind;
   std::optional<Bending> bending;

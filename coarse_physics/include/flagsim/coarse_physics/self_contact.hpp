@@ -1,0 +1,123 @@
+#pragma once
+// Self-contact ([contact] thickness; issue 31): the cloth keeps its
+// non-neighbouring parts at least `thickness` apart.
+//
+// The cloth is the lattice's triangles, two per cell: (j, k), (j, k+1),
+// (j+1, k+1) and (j, k), (j+1, k+1), (j+1, k), and their edges (rows,
+// columns and that diagonal). A node and a triangle, or two edges, are
+// neighbours, and never pushed apart, when they share a node or lie closer
+// than kNeighbourReach x thickness at rest: a fold brings such parts together
+// by construction (a cloth folded flat on itself turns through a half circle
+// of diameter `thickness`, about 1.6 thickness of cloth, around its fold line).
+//
+// Method: a projection after each step, as for the solids (obstacles.hpp), so
+// no stiffness and no change of any stability limit, and the same code for
+// every backend. Every node closer than `thickness` to a non-neighbouring
+// triangle is pushed out to `thickness`, node and triangle corners moving in
+// proportion to their weights (free nodes 1, pinned 0; the corners by their
+// barycentric weights: the position-based point-triangle constraint of
+// Bridson, Fedkiw & Anderson 2002 and Mueller et al. 2007); every two
+// non-neighbouring edges closer than `thickness` between their ends are pushed
+// apart along the line of their closest points the same way. The part of the
+// relative velocity that closes the gap is removed (inelastic, frictionless).
+// Each keeps the side it was on at the step's start (`before`): a node that
+// passed through a triangle, or an edge through an edge, in one step goes
+// back to its own side, which is what keeps two layers from crossing. With
+// both kinds of pair a mesh that starts without intersections keeps none
+// while no node travels `thickness` in a step (an intersection begins with a
+// node through a triangle or an edge through an edge). Gauss-Seidel over the
+// pairs (kContactPasses).
+//
+// Cost: candidate pairs (closer than thickness + margin) are found only when
+// some node has moved half the margin since they last were, and every step
+// looks at those alone: a pair closer than `thickness` now was closer than
+// thickness + margin then. To find them, nodes, triangles and edges are
+// grouped in blocks of up to 4 x 4 cells; a pair of blocks is looked into only
+// when their boxes (widened by the reach) overlap, and a block with itself or
+// a neighbouring block only when their triangles' normals do not fit in one
+// cone of kFlatAngle about a common axis: a patch within 55 degrees of one
+// plane cannot bring parts more than 2 thicknesses apart in the cloth (1 / cos
+// 55 = 1.74, with room for 15% compression) within `thickness` of each other.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "flagsim/core/lattice.hpp"
+#include "flagsim/core/vec3.hpp"
+
+namespace flagsim::physics {
+
+/// Parts of the cloth closer than this many thicknesses at rest are neighbours.
+inline constexpr double kNeighbourReach = 2.0;
+/// Half-angle of the normal cone within which a patch cannot touch itself, rad (55 degrees).
+inline constexpr double kFlatAngle = 0.96;
+/// Gauss-Seidel passes over the pairs a projection found, at most: a pass
+/// that finds no pair short of the thickness by more than kContactTolerance
+/// of it is the last (pairs share nodes, so one pass leaves some short).
+inline constexpr int kContactPasses = 16;
+inline constexpr double kContactTolerance = 1e-3;
+
+class SelfContact {
+ public:
+  SelfContact(const Lattice& lattice, double thickness_m);
+
+  double thickness_m() const { return thickness_m_; }
+
+  /// Pushes every node out of the `thickness` of every non-neighbouring
+  /// triangle, and every two non-neighbouring edges apart to it, on the side
+  /// they were on in `before_m` [n] (empty: the side they are on now);
+  /// velocities [n] m/s (may be empty) lose their closing part. Nodes with
+  /// `pinned` (may be empty) do not move. Returns how many pairs were pushed
+  /// (0: nothing moved).
+  int project(std::span<Vec3> x_m, std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned,
+              std::span<const Vec3> before_m);
+
+  /// The smallest distance between non-neighbouring parts (a node and a
+  /// triangle, or two edges between their ends) among those within `reach_m`
+  /// of each other, m (reach_m when none is): what the tests read.
+  double closest_m(std::span<const Vec3> x_m, double reach_m);
+
+ private:
+  /// A node against a triangle (its cell and which half).
+  struct NodeTriangle {
+    std::uint32_t node;
+    std::uint32_t cell;
+    std::uint8_t half;
+  };
+  /// Two edges (indices into edges_).
+  struct EdgeEdge {
+    std::uint32_t a, b;
+  };
+  /// The triangle's corners: half 0 (j,k)-(j,k+1)-(j+1,k+1), half 1 (j,k)-(j+1,k+1)-(j+1,k).
+  std::array<std::uint32_t, 3> corners(std::uint32_t cell, int half) const;
+  /// Whether `node` and `cell` are neighbours in the cloth (see the top).
+  bool neighbours(std::uint32_t node, std::uint32_t cell) const;
+  bool edge_neighbours(std::uint32_t a, std::uint32_t b) const;
+  /// node_triangles_ and edge_edges_: every pair within `reach_m` of each
+  /// other at `x_m` that are not neighbours.
+  void find_candidates(std::span<const Vec3> x_m, double reach_m);
+  /// One Gauss-Seidel pass; returns the largest gap it closed, m.
+  double pass(std::span<Vec3> x_m, std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned,
+              std::span<const Vec3> before_m, int& pushed);
+
+  Lattice lattice_;
+  double thickness_m_;
+  double margin_m_;              ///< candidates are found within thickness + margin
+  int block_cells_;              ///< cells per block side
+  int block_rows_, block_cols_;  ///< blocks down and across
+  double neighbour_cells_x_, neighbour_cells_y_;     ///< kNeighbourReach x thickness, in cells
+  std::vector<std::array<std::uint32_t, 2>> edges_;  ///< nodes of every edge
+  std::vector<std::array<float, 2>> edge_rest_;      ///< each edge's rest midpoint (x, y), m
+  std::vector<std::uint32_t> block_edges_;           ///< edges owned by each block, block by block
+  std::vector<std::uint32_t> block_edge_start_;      ///< [blocks + 1] into block_edges_
+  std::vector<NodeTriangle> node_triangles_;         ///< candidates
+  std::vector<EdgeEdge> edge_edges_;                 ///< candidates
+  std::vector<Vec3> anchor_;  ///< where the nodes were when the candidates were found
+  // Per block: box low and high corners; its normals' cone (unit axis, half-angle rad).
+  std::vector<Vec3> low_, high_, axis_;
+  std::vector<double> spread_;
+  std::vector<Vec3> normals_;  ///< per triangle (2 per cell), at x
+};
+
+}  // namespace flagsim::physics

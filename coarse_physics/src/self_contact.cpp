@@ -1,0 +1,444 @@
+#include "flagsim/coarse_physics/self_contact.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+namespace flagsim::physics {
+namespace {
+
+// The point of triangle (a, b, c) closest to p, as barycentric weights
+// (Ericson, Real-Time Collision Detection, 5.1.5); `inside` when it lies
+// inside the triangle (not on an edge or a corner).
+struct Closest {
+  double w[3];
+  bool inside;
+};
+
+Closest closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return {{1.0, 0.0, 0.0}, false};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return {{0.0, 1.0, 0.0}, false};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    const double v = d1 / (d1 - d3);
+    return {{1.0 - v, v, 0.0}, false};
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return {{0.0, 0.0, 1.0}, false};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    const double w = d2 / (d2 - d6);
+    return {{1.0 - w, 0.0, w}, false};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {{0.0, 1.0 - w, w}, false};
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0.0)) return {{1.0, 0.0, 0.0}, false};  // a degenerate triangle: its corner
+  const double v = vb / denom, w = vc / denom;
+  return {{1.0 - v - w, v, w}, true};
+}
+
+// Parameters (s, u) of the closest points p0 + s (p1 - p0) and q0 + u (q1 -
+// q0) of two segments (Ericson 5.1.9), each clamped to [0, 1].
+std::array<double, 2> closest_on_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0,
+                                          const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  if (a <= 0.0 && e <= 0.0) return {0.0, 0.0};
+  if (a <= 0.0) return {0.0, std::clamp(f / e, 0.0, 1.0)};
+  const double c = d1.dot(r);
+  if (e <= 0.0) return {std::clamp(-c / a, 0.0, 1.0), 0.0};
+  const double b = d1.dot(d2), denom = a * e - b * b;
+  double s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  double u = (b * s + f) / e;
+  if (u < 0.0) {
+    u = 0.0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (u > 1.0) {
+    u = 1.0;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+  return {s, u};
+}
+
+// 2D distance between segments ab and cd (rest coordinates), m.
+double rest_distance(const std::array<double, 2>& a, const std::array<double, 2>& b,
+                     const std::array<double, 2>& c, const std::array<double, 2>& d) {
+  const Vec3 p0(a[0], a[1], 0.0), p1(b[0], b[1], 0.0), q0(c[0], c[1], 0.0), q1(d[0], d[1], 0.0);
+  const auto [s, u] = closest_on_segments(p0, p1, q0, q1);
+  return ((p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0))).norm();
+}
+
+// How far outside a triangle (in barycentric weight) a node still counts as
+// over it: a node above a shared corner or edge is over every triangle there.
+constexpr double kEdgeSlack = 0.02;
+// Edge-edge pairs whose closest points are this close to an end are the
+// node-triangle pairs' (the end is a node of the triangles around the edge).
+constexpr double kEdgeEnd = 1e-6;
+
+Vec3 unit_or_zero(const Vec3& v) {
+  const double n = v.norm();
+  return n > 0.0 ? Vec3(v / n) : Vec3::Zero();
+}
+
+}  // namespace
+
+SelfContact::SelfContact(const Lattice& lattice, double thickness_m)
+    : lattice_(lattice), thickness_m_(thickness_m) {
+  assert(thickness_m > 0.0 && lattice.rows >= 2 && lattice.cols >= 2);
+  const int J = lattice.rows, K = lattice.cols;
+  margin_m_ =
+      std::max(2.0 * thickness_m, 0.25 * std::min(lattice.spacing_x_m, lattice.spacing_y_m));
+  block_cells_ = std::clamp(std::min(J - 1, K - 1) / 4, 1, 4);
+  block_rows_ = (J - 2) / block_cells_ + 1;
+  block_cols_ = (K - 2) / block_cells_ + 1;
+  neighbour_cells_x_ = kNeighbourReach * thickness_m / lattice.spacing_x_m;
+  neighbour_cells_y_ = kNeighbourReach * thickness_m / lattice.spacing_y_m;
+  const std::size_t blocks = std::size_t(block_rows_) * std::size_t(block_cols_);
+  low_.resize(blocks);
+  high_.resize(blocks);
+  axis_.resize(blocks);
+  spread_.resize(blocks);
+  normals_.resize(std::size_t(J - 1) * std::size_t(K - 1) * 2);
+  // Every edge once, owned by a cell: its top, left and diagonal, the right
+  // edges of the last column and the bottom edges of the last row.
+  std::vector<std::vector<std::uint32_t>> owned(blocks);
+  const auto at = [&](int j, int k) { return std::uint32_t(lattice.index(j, k)); };
+  for (int j = 0; j + 1 < J; ++j)
+    for (int k = 0; k + 1 < K; ++k) {
+      const std::size_t block =
+          std::size_t(j / block_cells_) * std::size_t(block_cols_) + std::size_t(k / block_cells_);
+      const auto add = [&](std::uint32_t a, std::uint32_t b) {
+        owned[block].push_back(std::uint32_t(edges_.size()));
+        edges_.push_back({a, b});
+      };
+      add(at(j, k), at(j, k + 1));
+      add(at(j, k), at(j + 1, k));
+      add(at(j, k), at(j + 1, k + 1));
+      if (k + 2 == K) add(at(j, k + 1), at(j + 1, k + 1));
+      if (j + 2 == J) add(at(j + 1, k), at(j + 1, k + 1));
+    }
+  block_edge_start_.push_back(0);
+  for (const auto& list : owned) {
+    block_edges_.insert(block_edges_.end(), list.begin(), list.end());
+    block_edge_start_.push_back(std::uint32_t(block_edges_.size()));
+  }
+}
+
+std::array<std::uint32_t, 3> SelfContact::corners(std::uint32_t cell, int half) const {
+  const int cells_across = lattice_.cols - 1;
+  const int j = int(cell) / cells_across, k = int(cell) % cells_across;
+  const auto at = [&](int jj, int kk) { return std::uint32_t(lattice_.index(jj, kk)); };
+  if (half == 0) return {at(j, k), at(j, k + 1), at(j + 1, k + 1)};
+  return {at(j, k), at(j + 1, k + 1), at(j + 1, k)};
+}
+
+bool SelfContact::neighbours(std::uint32_t node, std::uint32_t cell) const {
+  const int cells_across = lattice_.cols - 1;
+  const int j = int(node) / lattice_.cols, k = int(node) % lattice_.cols;
+  const int jc = int(cell) / cells_across, kc = int(cell) % cells_across;
+  // Distance in cells from the node to the cell's rectangle, at rest.
+  const double dx = std::max({0.0, double(kc - k), double(k - kc - 1)}) / neighbour_cells_x_;
+  const double dy = std::max({0.0, double(jc - j), double(j - jc - 1)}) / neighbour_cells_y_;
+  return dx * dx + dy * dy < 1.0;
+}
+
+bool SelfContact::edge_neighbours(std::uint32_t a, std::uint32_t b) const {
+  const auto& ea = edges_[a];
+  const auto& eb = edges_[b];
+  if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return true;
+  const auto rest = [&](std::uint32_t node) {
+    const int j = int(node) / lattice_.cols, k = int(node) % lattice_.cols;
+    return std::array<double, 2>{k * lattice_.spacing_x_m, j * lattice_.spacing_y_m};
+  };
+  return rest_distance(rest(ea[0]), rest(ea[1]), rest(eb[0]), rest(eb[1])) <
+         kNeighbourReach * thickness_m_;
+}
+
+void SelfContact::find_candidates(std::span<const Vec3> x_m, double reach_m) {
+  node_triangles_.clear();
+  edge_edges_.clear();
+  const int J = lattice_.rows, K = lattice_.cols, B = block_cells_;
+  const std::size_t cells_across = std::size_t(K - 1);
+  // Every triangle's unit normal at x.
+  for (int j = 0; j + 1 < J; ++j)
+    for (int k = 0; k + 1 < K; ++k) {
+      const std::size_t cell = std::size_t(j) * cells_across + std::size_t(k);
+      for (int half = 0; half < 2; ++half) {
+        const auto c = corners(std::uint32_t(cell), half);
+        normals_[2 * cell + std::size_t(half)] =
+            unit_or_zero((x_m[c[1]] - x_m[c[0]]).cross(x_m[c[2]] - x_m[c[0]]));
+      }
+    }
+  // Each block's box (its cells' nodes) and normal cone.
+  const double infinity = std::numeric_limits<double>::infinity();
+  for (int bj = 0; bj < block_rows_; ++bj)
+    for (int bk = 0; bk < block_cols_; ++bk) {
+      const std::size_t b = std::size_t(bj) * std::size_t(block_cols_) + std::size_t(bk);
+      const int j0 = bj * B, j1 = std::min(J - 1, j0 + B), k0 = bk * B,
+                k1 = std::min(K - 1, k0 + B);
+      Vec3 low = Vec3::Constant(infinity), high = Vec3::Constant(-infinity);
+      for (int j = j0; j <= j1; ++j)
+        for (int k = k0; k <= k1; ++k) {
+          const std::size_t i = lattice_.index(j, k);
+          low = low.cwiseMin(x_m[i]);
+          high = high.cwiseMax(x_m[i]);
+        }
+      low_[b] = low - Vec3::Constant(0.5 * reach_m);
+      high_[b] = high + Vec3::Constant(0.5 * reach_m);
+      Vec3 sum = Vec3::Zero();
+      for (int j = j0; j < j1; ++j)
+        for (int k = k0; k < k1; ++k) {
+          const std::size_t cell = std::size_t(j) * cells_across + std::size_t(k);
+          sum += normals_[2 * cell] + normals_[2 * cell + 1];
+        }
+      const Vec3 axis = unit_or_zero(sum);
+      double cos_min = 1.0;
+      for (int j = j0; j < j1; ++j)
+        for (int k = k0; k < k1; ++k) {
+          const std::size_t cell = std::size_t(j) * cells_across + std::size_t(k);
+          cos_min =
+              std::min({cos_min, normals_[2 * cell].dot(axis), normals_[2 * cell + 1].dot(axis)});
+        }
+      axis_[b] = axis;
+      spread_[b] = std::acos(std::clamp(cos_min, -1.0, 1.0));
+    }
+  // Nodes against triangles of two blocks: a block owns the nodes of its
+  // cells but its last row and column (the next block's first), and the
+  // lattice's last row and column go to the blocks along them.
+  const auto owned = [&](int blocks, int block, int nodes) {
+    const int first = block * B;
+    const int last = block + 1 == blocks ? nodes - 1 : std::min(nodes - 1, first + B) - 1;
+    return std::pair<int, int>{first, last};
+  };
+  const double reach2 = reach_m * reach_m;
+  const auto test_nodes = [&](int ba_j, int ba_k, int bb_j, int bb_k) {
+    const auto [nj0, nj1] = owned(block_rows_, ba_j, J);
+    const auto [nk0, nk1] = owned(block_cols_, ba_k, K);
+    const int cj0 = bb_j * B, cj1 = std::min(J - 1, cj0 + B);
+    const int ck0 = bb_k * B, ck1 = std::min(K - 1, ck0 + B);
+    const std::size_t other = std::size_t(bb_j) * std::size_t(block_cols_) + std::size_t(bb_k);
+    for (int j = nj0; j <= nj1; ++j)
+      for (int k = nk0; k <= nk1; ++k) {
+        const auto node = std::uint32_t(lattice_.index(j, k));
+        const Vec3& p = x_m[node];
+        if ((p.array() < low_[other].array() - 0.5 * reach_m).any() ||
+            (p.array() > high_[other].array() + 0.5 * reach_m).any())
+          continue;  // nowhere near the other block
+        for (int cj = cj0; cj < cj1; ++cj)
+          for (int ck = ck0; ck < ck1; ++ck) {
+            const auto cell = std::uint32_t(std::size_t(cj) * cells_across + std::size_t(ck));
+            if (neighbours(node, cell)) continue;
+            for (int half = 0; half < 2; ++half) {
+              const auto c = corners(cell, half);
+              if (c[0] == node || c[1] == node || c[2] == node) continue;
+              const Closest q = closest_on_triangle(p, x_m[c[0]], x_m[c[1]], x_m[c[2]]);
+              const Vec3 on = q.w[0] * x_m[c[0]] + q.w[1] * x_m[c[1]] + q.w[2] * x_m[c[2]];
+              if ((p - on).squaredNorm() < reach2)
+                node_triangles_.push_back({node, cell, std::uint8_t(half)});
+            }
+          }
+      }
+  };
+  const auto test_edges = [&](std::size_t a, std::size_t b) {
+    for (std::uint32_t i = block_edge_start_[a]; i < block_edge_start_[a + 1]; ++i) {
+      const std::uint32_t ea = block_edges_[i];
+      const Vec3 &p0 = x_m[edges_[ea][0]], &p1 = x_m[edges_[ea][1]];
+      const Vec3 lo = p0.cwiseMin(p1) - Vec3::Constant(reach_m),
+                 hi = p0.cwiseMax(p1) + Vec3::Constant(reach_m);
+      if ((hi.array() < low_[b].array()).any() || (lo.array() > high_[b].array()).any()) continue;
+      for (std::uint32_t m = a == b ? i + 1 : block_edge_start_[b]; m < block_edge_start_[b + 1];
+           ++m) {
+        const std::uint32_t eb = block_edges_[m];
+        const Vec3 &q0 = x_m[edges_[eb][0]], &q1 = x_m[edges_[eb][1]];
+        if ((q0.cwiseMin(q1).array() > hi.array()).any() ||
+            (q0.cwiseMax(q1).array() < lo.array()).any())
+          continue;
+        const auto [s, u] = closest_on_segments(p0, p1, q0, q1);
+        if (((p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0))).squaredNorm() >= reach2) continue;
+        if (edge_neighbours(ea, eb)) continue;
+        edge_edges_.push_back({ea, eb});
+      }
+    }
+  };
+  const std::size_t blocks = low_.size();
+  for (std::size_t a = 0; a < blocks; ++a)
+    for (std::size_t b = a; b < blocks; ++b) {
+      if ((low_[a].array() > high_[b].array()).any() || (low_[b].array() > high_[a].array()).any())
+        continue;
+      const int aj = int(a) / block_cols_, ak = int(a) % block_cols_;
+      const int bj = int(b) / block_cols_, bk = int(b) % block_cols_;
+      if (std::abs(aj - bj) <= 1 && std::abs(ak - bk) <= 1) {
+        // One cone holds both blocks' normals: half-angle (theta + alpha_a + alpha_b) / 2.
+        const double between = std::acos(std::clamp(axis_[a].dot(axis_[b]), -1.0, 1.0));
+        const double half_angle = a == b ? spread_[a] : 0.5 * (between + spread_[a] + spread_[b]);
+        if (half_angle <= kFlatAngle && axis_[a].squaredNorm() > 0.0 &&
+            axis_[b].squaredNorm() > 0.0)
+          continue;
+      }
+      test_nodes(aj, ak, bj, bk);
+      if (a != b) test_nodes(bj, bk, aj, ak);
+      test_edges(a, b);
+    }
+}
+
+double SelfContact::pass(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+                         std::span<const std::uint8_t> pinned, std::span<const Vec3> before_m,
+                         int& pushed) {
+  const bool velocities = !v_m_s.empty();
+  const auto weight = [&](std::uint32_t i) { return !pinned.empty() && pinned[i] ? 0.0 : 1.0; };
+  double largest_gap = 0.0;
+  for (const NodeTriangle& pair : node_triangles_) {
+    const auto c = corners(pair.cell, pair.half);
+    Vec3& p = x_m[pair.node];
+    const Closest q = closest_on_triangle(p, x_m[c[0]], x_m[c[1]], x_m[c[2]]);
+    const Vec3 on = q.w[0] * x_m[c[0]] + q.w[1] * x_m[c[1]] + q.w[2] * x_m[c[2]];
+    const Vec3 normal = (x_m[c[1]] - x_m[c[0]]).cross(x_m[c[2]] - x_m[c[0]]);
+    const double area2 = normal.squaredNorm();
+    // Over the triangle (its plane's foot inside it, or on an edge or a
+    // corner, within kEdgeSlack): out along the normal on the node's side,
+    // wherever the node is now (it may have passed through). Beside it: out
+    // from the nearest point.
+    bool over = q.inside;
+    if (!over && area2 > 0.0) {
+      const Vec3 foot = p - ((p - x_m[c[0]]).dot(normal) / area2) * normal;
+      over = true;
+      for (int i = 0; i < 3 && over; ++i) {
+        const Vec3& e0 = x_m[c[(i + 1) % 3]];
+        const Vec3& e1 = x_m[c[(i + 2) % 3]];
+        over = (e1 - e0).cross(foot - e0).dot(normal) >= -kEdgeSlack * area2;
+      }
+    }
+    Vec3 direction;
+    double gap;  // how far short of the thickness, m
+    if (over && area2 > 0.0) {
+      // The side the node keeps: where it was at the step's start, else where it is.
+      double side = 0.0;
+      if (!before_m.empty())
+        side = (before_m[pair.node] - before_m[c[0]])
+                   .dot((before_m[c[1]] - before_m[c[0]]).cross(before_m[c[2]] - before_m[c[0]]));
+      if (side == 0.0) side = (p - x_m[c[0]]).dot(normal);
+      direction = (side < 0.0 ? -1.0 : 1.0) * (normal / std::sqrt(area2));
+      gap = thickness_m_ - (p - x_m[c[0]]).dot(direction);
+    } else {
+      const double d = (p - on).norm();
+      direction = d > 0.0 ? Vec3((p - on) / d) : Vec3::Zero();
+      gap = thickness_m_ - d;
+    }
+    if (gap <= 0.0 || direction.squaredNorm() == 0.0) continue;
+    const double wp = weight(pair.node);
+    double denominator = wp;
+    for (int i = 0; i < 3; ++i) denominator += weight(c[i]) * q.w[i] * q.w[i];
+    if (denominator == 0.0) continue;
+    largest_gap = std::max(largest_gap, gap);
+    const double lambda = gap / denominator;
+    p += wp * lambda * direction;
+    for (int i = 0; i < 3; ++i) x_m[c[i]] -= weight(c[i]) * q.w[i] * lambda * direction;
+    ++pushed;
+    if (!velocities) continue;
+    Vec3 relative = v_m_s[pair.node];
+    for (int i = 0; i < 3; ++i) relative -= q.w[i] * v_m_s[c[i]];
+    const double closing = relative.dot(direction);
+    if (closing >= 0.0) continue;
+    const double impulse = -closing / denominator;
+    v_m_s[pair.node] += wp * impulse * direction;
+    for (int i = 0; i < 3; ++i) v_m_s[c[i]] -= weight(c[i]) * q.w[i] * impulse * direction;
+  }
+  for (const EdgeEdge& pair : edge_edges_) {
+    const auto [a0, a1] = edges_[pair.a];
+    const auto [b0, b1] = edges_[pair.b];
+    const auto [s, u] = closest_on_segments(x_m[a0], x_m[a1], x_m[b0], x_m[b1]);
+    if (s <= kEdgeEnd || s >= 1.0 - kEdgeEnd || u <= kEdgeEnd || u >= 1.0 - kEdgeEnd) continue;
+    const Vec3 w = (x_m[a0] + s * (x_m[a1] - x_m[a0])) - (x_m[b0] + u * (x_m[b1] - x_m[b0]));
+    const double d = w.norm();
+    // The side they keep: the line between the same points at the step's start.
+    Vec3 reference = Vec3::Zero();
+    if (!before_m.empty())
+      reference = unit_or_zero((before_m[a0] + s * (before_m[a1] - before_m[a0])) -
+                               (before_m[b0] + u * (before_m[b1] - before_m[b0])));
+    Vec3 direction;
+    double gap;
+    const double along = reference.dot(w);
+    if (reference.squaredNorm() > 0.0 && along <= 0.0) {  // crossed: back to the start's side
+      direction = reference;
+      gap = thickness_m_ - along;
+    } else if (d > 0.0) {
+      direction = w / d;
+      gap = thickness_m_ - d;
+    } else {
+      continue;
+    }
+    if (gap <= 0.0) continue;
+    const double g[4] = {1.0 - s, s, -(1.0 - u), -u};
+    const std::uint32_t n[4] = {a0, a1, b0, b1};
+    double denominator = 0.0;
+    for (int i = 0; i < 4; ++i) denominator += weight(n[i]) * g[i] * g[i];
+    if (denominator == 0.0) continue;
+    largest_gap = std::max(largest_gap, gap);
+    const double lambda = gap / denominator;
+    for (int i = 0; i < 4; ++i) x_m[n[i]] += weight(n[i]) * g[i] * lambda * direction;
+    ++pushed;
+    if (!velocities) continue;
+    Vec3 relative = Vec3::Zero();
+    for (int i = 0; i < 4; ++i) relative += g[i] * v_m_s[n[i]];
+    const double closing = relative.dot(direction);
+    if (closing >= 0.0) continue;
+    const double impulse = -closing / denominator;
+    for (int i = 0; i < 4; ++i) v_m_s[n[i]] += weight(n[i]) * g[i] * impulse * direction;
+  }
+  return largest_gap;
+}
+
+int SelfContact::project(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+                         std::span<const std::uint8_t> pinned, std::span<const Vec3> before_m) {
+  assert(x_m.size() == lattice_.node_count());
+  // New candidates once some node has moved half the margin since the last.
+  double moved2 = std::numeric_limits<double>::infinity();
+  if (anchor_.size() == x_m.size()) {
+    moved2 = 0.0;
+    for (std::size_t i = 0; i < x_m.size(); ++i)
+      moved2 = std::max(moved2, (x_m[i] - anchor_[i]).squaredNorm());
+  }
+  if (!(moved2 <= 0.25 * margin_m_ * margin_m_)) {
+    find_candidates(x_m, thickness_m_ + margin_m_);
+    anchor_.assign(x_m.begin(), x_m.end());
+  }
+  if (node_triangles_.empty() && edge_edges_.empty()) return 0;
+  int pushed = 0;
+  for (int pass_index = 0; pass_index < kContactPasses; ++pass_index)
+    if (pass(x_m, v_m_s, pinned, before_m, pushed) <= kContactTolerance * thickness_m_) break;
+  return pushed;
+}
+
+double SelfContact::closest_m(std::span<const Vec3> x_m, double reach_m) {
+  find_candidates(x_m, reach_m);
+  anchor_.clear();  // the candidates are not project()'s any more
+  double closest = reach_m;
+  for (const NodeTriangle& pair : node_triangles_) {
+    const auto c = corners(pair.cell, pair.half);
+    const Closest q = closest_on_triangle(x_m[pair.node], x_m[c[0]], x_m[c[1]], x_m[c[2]]);
+    const Vec3 on = q.w[0] * x_m[c[0]] + q.w[1] * x_m[c[1]] + q.w[2] * x_m[c[2]];
+    closest = std::min(closest, (x_m[pair.node] - on).norm());
+  }
+  for (const EdgeEdge& pair : edge_edges_) {
+    const auto [a0, a1] = edges_[pair.a];
+    const auto [b0, b1] = edges_[pair.b];
+    const auto [s, u] = closest_on_segments(x_m[a0], x_m[a1], x_m[b0], x_m[b1]);
+    if (s <= kEdgeEnd || s >= 1.0 - kEdgeEnd || u <= kEdgeEnd || u >= 1.0 - kEdgeEnd) continue;
+    closest = std::min(
+        closest,
+        ((x_m[a0] + s * (x_m[a1] - x_m[a0])) - (x_m[b0] + u * (x_m[b1] - x_m[b0]))).norm());
+  }
+  return closest;
+}
+
+}  // namespace flagsim::physics
