@@ -72,6 +72,9 @@ constexpr Effect kEffects[] = {
      nullptr, nullptr},
     {"pole", [](const Scene& scene, const ClothModel&) { return scene.pole.has_value(); }, nullptr,
      nullptr},
+    // Self-contact (self_contact.hpp): a projection after each step, not a force.
+    {"contact", [](const Scene& scene, const ClothModel&) { return scene.contact.has_value(); },
+     nullptr, nullptr},
 };
 
 }  // namespace

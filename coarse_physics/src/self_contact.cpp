@@ -84,6 +84,10 @@ constexpr double kEdgeSlack = 0.02;
 // Edge-edge pairs whose closest points are this close to an end are the
 // node-triangle pairs' (the end is a node of the triangles around the edge).
 constexpr double kEdgeEnd = 1e-6;
+// Pairs the first pass finds farther apart than (1 + this) thicknesses are
+// not looked at again in that projection: the later passes move nodes by
+// what is left of the gaps, a small part of a thickness.
+constexpr double kNearPairs = 0.5;
 
 Vec3 unit_or_zero(const Vec3& v) {
   const double n = v.norm();
@@ -291,13 +295,22 @@ void SelfContact::find_candidates(std::span<const Vec3> x_m, double reach_m) {
     }
 }
 
-double SelfContact::pass(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+double SelfContact::pass(bool first, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
                          std::span<const std::uint8_t> pinned, std::span<const Vec3> before_m,
                          int& pushed) {
+  // The first pass looks at every candidate and keeps those within
+  // kNearPairs thicknesses of touching; the passes after it at those alone.
+  const std::vector<NodeTriangle>& node_triangles = first ? node_triangles_ : near_nt_;
+  const std::vector<EdgeEdge>& edge_edges = first ? edge_edges_ : near_ee_;
+  if (first) {
+    near_nt_.clear();
+    near_ee_.clear();
+  }
+  const double near_gap = -kNearPairs * thickness_m_;
   const bool velocities = !v_m_s.empty();
   const auto weight = [&](std::uint32_t i) { return !pinned.empty() && pinned[i] ? 0.0 : 1.0; };
   double largest_gap = 0.0;
-  for (const NodeTriangle& pair : node_triangles_) {
+  for (const NodeTriangle& pair : node_triangles) {
     const auto c = corners(pair.cell, pair.half);
     Vec3& p = x_m[pair.node];
     const Closest q = closest_on_triangle(p, x_m[c[0]], x_m[c[1]], x_m[c[2]]);
@@ -334,6 +347,7 @@ double SelfContact::pass(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
       direction = d > 0.0 ? Vec3((p - on) / d) : Vec3::Zero();
       gap = thickness_m_ - d;
     }
+    if (first && gap > near_gap) near_nt_.push_back(pair);
     if (gap <= 0.0 || direction.squaredNorm() == 0.0) continue;
     const double wp = weight(pair.node);
     double denominator = wp;
@@ -353,11 +367,14 @@ double SelfContact::pass(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
     v_m_s[pair.node] += wp * impulse * direction;
     for (int i = 0; i < 3; ++i) v_m_s[c[i]] -= weight(c[i]) * q.w[i] * impulse * direction;
   }
-  for (const EdgeEdge& pair : edge_edges_) {
+  for (const EdgeEdge& pair : edge_edges) {
     const auto [a0, a1] = edges_[pair.a];
     const auto [b0, b1] = edges_[pair.b];
     const auto [s, u] = closest_on_segments(x_m[a0], x_m[a1], x_m[b0], x_m[b1]);
-    if (s <= kEdgeEnd || s >= 1.0 - kEdgeEnd || u <= kEdgeEnd || u >= 1.0 - kEdgeEnd) continue;
+    if (s <= kEdgeEnd || s >= 1.0 - kEdgeEnd || u <= kEdgeEnd || u >= 1.0 - kEdgeEnd) {
+      if (first) near_ee_.push_back(pair);  // its ends may slide inside in a later pass
+      continue;
+    }
     const Vec3 w = (x_m[a0] + s * (x_m[a1] - x_m[a0])) - (x_m[b0] + u * (x_m[b1] - x_m[b0]));
     const double d = w.norm();
     // The side they keep: the line between the same points at the step's start.
@@ -377,6 +394,7 @@ double SelfContact::pass(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
     } else {
       continue;
     }
+    if (first && gap > near_gap) near_ee_.push_back(pair);
     if (gap <= 0.0) continue;
     const double g[4] = {1.0 - s, s, -(1.0 - u), -u};
     const std::uint32_t n[4] = {a0, a1, b0, b1};
@@ -415,7 +433,9 @@ int SelfContact::project(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
   if (node_triangles_.empty() && edge_edges_.empty()) return 0;
   int pushed = 0;
   for (int pass_index = 0; pass_index < kContactPasses; ++pass_index)
-    if (pass(x_m, v_m_s, pinned, before_m, pushed) <= kContactTolerance * thickness_m_) break;
+    if (pass(pass_index == 0, x_m, v_m_s, pinned, before_m, pushed) <=
+        kContactTolerance * thickness_m_)
+      break;
   return pushed;
 }
 

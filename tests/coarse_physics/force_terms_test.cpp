@@ -66,6 +66,9 @@ TEST(ForceTerms, TheEffectsListNamesEveryEffectInItsOrder) {
   EXPECT_EQ(physics_effects(full, make_cloth_model(full)),
             (std::vector<std::string>{"stretch", "bending", "gravity", "wind", "gusts",
                                       "turbulence", "damping", "pole"}));
+  Scene touching = full;  // self-contact: a projection, named last
+  touching.contact = Contact{};
+  EXPECT_EQ(physics_effects(touching, make_cloth_model(touching)).back(), "contact");
   const Scene bare = test::small_cloth();  // no damping either
   EXPECT_EQ(physics_effects(bare, make_cloth_model(bare)), std::vector<std::string>{"stretch"});
 }

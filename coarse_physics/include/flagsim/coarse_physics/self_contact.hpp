@@ -97,9 +97,10 @@ class SelfContact {
   /// node_triangles_ and edge_edges_: every pair within `reach_m` of each
   /// other at `x_m` that are not neighbours.
   void find_candidates(std::span<const Vec3> x_m, double reach_m);
-  /// One Gauss-Seidel pass; returns the largest gap it closed, m.
-  double pass(std::span<Vec3> x_m, std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned,
-              std::span<const Vec3> before_m, int& pushed);
+  /// One Gauss-Seidel pass (`first`: over every candidate, keeping the near
+  /// ones for the passes after it); returns the largest gap it closed, m.
+  double pass(bool first, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
+              std::span<const std::uint8_t> pinned, std::span<const Vec3> before_m, int& pushed);
 
   Lattice lattice_;
   double thickness_m_;
@@ -113,6 +114,8 @@ class SelfContact {
   std::vector<std::uint32_t> block_edge_start_;      ///< [blocks + 1] into block_edges_
   std::vector<NodeTriangle> node_triangles_;         ///< candidates
   std::vector<EdgeEdge> edge_edges_;                 ///< candidates
+  std::vector<NodeTriangle> near_nt_;                ///< the first pass's near candidates
+  std::vector<EdgeEdge> near_ee_;
   std::vector<Vec3> anchor_;  ///< where the nodes were when the candidates were found
   // Per block: box low and high corners; its normals' cone (unit axis, half-angle rad).
   std::vector<Vec3> low_, high_, axis_;
