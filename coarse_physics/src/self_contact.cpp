@@ -247,8 +247,10 @@ void SelfContact::find_candidates(std::span<const Vec3> x_m, double reach_m) {
               if (c[0] == node || c[1] == node || c[2] == node) continue;
               const Closest q = closest_on_triangle(p, x_m[c[0]], x_m[c[1]], x_m[c[2]]);
               const Vec3 on = q.w[0] * x_m[c[0]] + q.w[1] * x_m[c[1]] + q.w[2] * x_m[c[2]];
-              if ((p - on).squaredNorm() < reach2)
-                node_triangles_.push_back({node, cell, std::uint8_t(half)});
+              const double apart2 = (p - on).squaredNorm();
+              if (apart2 < reach2)
+                node_triangles_.push_back(
+                    {node, cell, std::uint8_t(half), float(std::sqrt(apart2))});
             }
           }
       }
@@ -268,9 +270,10 @@ void SelfContact::find_candidates(std::span<const Vec3> x_m, double reach_m) {
             (q0.cwiseMax(q1).array() < lo.array()).any())
           continue;
         const auto [s, u] = closest_on_segments(p0, p1, q0, q1);
-        if (((p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0))).squaredNorm() >= reach2) continue;
+        const double apart2 = ((p0 + s * (p1 - p0)) - (q0 + u * (q1 - q0))).squaredNorm();
+        if (apart2 >= reach2) continue;
         if (edge_neighbours(ea, eb)) continue;
-        edge_edges_.push_back({ea, eb});
+        edge_edges_.push_back({ea, eb, float(std::sqrt(apart2))});
       }
     }
   };
@@ -307,11 +310,17 @@ double SelfContact::pass(bool first, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
     near_ee_.clear();
   }
   const double near_gap = -kNearPairs * thickness_m_;
+  // Farther apart than near_gap still, whatever their nodes' moves since found
+  // (float distances: a part in 1e6 of slack).
+  const double far = (1.0 + kNearPairs) * thickness_m_ * (1.0 + 1e-6);
   const bool velocities = !v_m_s.empty();
   const auto weight = [&](std::uint32_t i) { return !pinned.empty() && pinned[i] ? 0.0 : 1.0; };
   double largest_gap = 0.0;
   for (const NodeTriangle& pair : node_triangles) {
     const auto c = corners(pair.cell, pair.half);
+    if (pair.apart_m - moved_[pair.node] - std::max({moved_[c[0]], moved_[c[1]], moved_[c[2]]}) >
+        far)
+      continue;
     Vec3& p = x_m[pair.node];
     const Closest q = closest_on_triangle(p, x_m[c[0]], x_m[c[1]], x_m[c[2]]);
     const Vec3 on = q.w[0] * x_m[c[0]] + q.w[1] * x_m[c[1]] + q.w[2] * x_m[c[2]];
@@ -370,6 +379,8 @@ double SelfContact::pass(bool first, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
   for (const EdgeEdge& pair : edge_edges) {
     const auto [a0, a1] = edges_[pair.a];
     const auto [b0, b1] = edges_[pair.b];
+    if (pair.apart_m - std::max(moved_[a0], moved_[a1]) - std::max(moved_[b0], moved_[b1]) > far)
+      continue;
     const auto [s, u] = closest_on_segments(x_m[a0], x_m[a1], x_m[b0], x_m[b1]);
     if (s <= kEdgeEnd || s >= 1.0 - kEdgeEnd || u <= kEdgeEnd || u >= 1.0 - kEdgeEnd) {
       if (first) near_ee_.push_back(pair);  // its ends may slide inside in a later pass
@@ -420,15 +431,18 @@ int SelfContact::project(std::span<Vec3> x_m, std::span<Vec3> v_m_s,
                          std::span<const std::uint8_t> pinned, std::span<const Vec3> before_m) {
   assert(x_m.size() == lattice_.node_count());
   // New candidates once some node has moved half the margin since the last.
-  double moved2 = std::numeric_limits<double>::infinity();
+  double moved = std::numeric_limits<double>::infinity();
   if (anchor_.size() == x_m.size()) {
-    moved2 = 0.0;
-    for (std::size_t i = 0; i < x_m.size(); ++i)
-      moved2 = std::max(moved2, (x_m[i] - anchor_[i]).squaredNorm());
+    moved = 0.0;
+    for (std::size_t i = 0; i < x_m.size(); ++i) {
+      moved_[i] = (x_m[i] - anchor_[i]).norm();
+      moved = std::max(moved, moved_[i]);
+    }
   }
-  if (!(moved2 <= 0.25 * margin_m_ * margin_m_)) {
+  if (!(moved <= 0.5 * margin_m_)) {
     find_candidates(x_m, thickness_m_ + margin_m_);
     anchor_.assign(x_m.begin(), x_m.end());
+    moved_.assign(x_m.size(), 0.0);
   }
   if (node_triangles_.empty() && edge_edges_.empty()) return 0;
   int pushed = 0;

@@ -84,10 +84,12 @@ class SelfContact {
     std::uint32_t node;
     std::uint32_t cell;
     std::uint8_t half;
+    float apart_m;  ///< their distance when found
   };
   /// Two edges (indices into edges_).
   struct EdgeEdge {
     std::uint32_t a, b;
+    float apart_m;  ///< their distance when found
   };
   /// The triangle's corners: half 0 (j,k)-(j,k+1)-(j+1,k+1), half 1 (j,k)-(j+1,k+1)-(j+1,k).
   std::array<std::uint32_t, 3> corners(std::uint32_t cell, int half) const;
@@ -117,6 +119,9 @@ class SelfContact {
   std::vector<NodeTriangle> near_nt_;                ///< the first pass's near candidates
   std::vector<EdgeEdge> near_ee_;
   std::vector<Vec3> anchor_;  ///< where the nodes were when the candidates were found
+  /// [n] how far each node has moved since, m: a pair found `apart_m` apart
+  /// that its nodes' moves cannot have brought near is passed over.
+  std::vector<double> moved_;
   // Per block: box low and high corners; its normals' cone (unit axis, half-angle rad).
   std::vector<Vec3> low_, high_, axis_;
   std::vector<double> spread_;
