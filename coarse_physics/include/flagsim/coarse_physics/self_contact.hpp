@@ -62,8 +62,6 @@ class SelfContact {
  public:
   SelfContact(const Lattice& lattice, double thickness_m);
 
-  double thickness_m() const { return thickness_m_; }
-
   /// Pushes every node out of the `thickness` of every non-neighbouring
   /// triangle, and every two non-neighbouring edges apart to it, on the side
   /// they were on in `before_m` [n] (empty: the side they are on now);
@@ -111,7 +109,6 @@ class SelfContact {
   int block_rows_, block_cols_;  ///< blocks down and across
   double neighbour_cells_x_, neighbour_cells_y_;     ///< kNeighbourReach x thickness, in cells
   std::vector<std::array<std::uint32_t, 2>> edges_;  ///< nodes of every edge
-  std::vector<std::array<float, 2>> edge_rest_;      ///< each edge's rest midpoint (x, y), m
   std::vector<std::uint32_t> block_edges_;           ///< edges owned by each block, block by block
   std::vector<std::uint32_t> block_edge_start_;      ///< [blocks + 1] into block_edges_
   std::vector<NodeTriangle> node_triangles_;         ///< candidates
