@@ -345,9 +345,13 @@ double SelfContact::pass(bool first, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
     if (over && area2 > 0.0) {
       // The side the node keeps: where it was at the step's start, else where it is.
       double side = 0.0;
-      if (!before_m.empty())
-        side = (before_m[pair.node] - before_m[c[0]])
-                   .dot((before_m[c[1]] - before_m[c[0]]).cross(before_m[c[2]] - before_m[c[0]]));
+      if (!before_m.empty()) {
+        const Vec3 before_normal =
+            (before_m[c[1]] - before_m[c[0]]).cross(before_m[c[2]] - before_m[c[0]]);
+        side = (before_m[pair.node] - before_m[c[0]]).dot(before_normal);
+        // Too close to the triangle's plane there to tell (set_side_reach).
+        if (side * side <= side_reach_m_ * side_reach_m_ * before_normal.squaredNorm()) side = 0.0;
+      }
       if (side == 0.0) side = (p - x_m[c[0]]).dot(normal);
       direction = (side < 0.0 ? -1.0 : 1.0) * (normal / std::sqrt(area2));
       gap = thickness_m_ - (p - x_m[c[0]]).dot(direction);
@@ -390,9 +394,11 @@ double SelfContact::pass(bool first, std::span<Vec3> x_m, std::span<Vec3> v_m_s,
     const double d = w.norm();
     // The side they keep: the line between the same points at the step's start.
     Vec3 reference = Vec3::Zero();
-    if (!before_m.empty())
-      reference = unit_or_zero((before_m[a0] + s * (before_m[a1] - before_m[a0])) -
-                               (before_m[b0] + u * (before_m[b1] - before_m[b0])));
+    if (!before_m.empty()) {
+      const Vec3 between = (before_m[a0] + s * (before_m[a1] - before_m[a0])) -
+                           (before_m[b0] + u * (before_m[b1] - before_m[b0]));
+      if (between.squaredNorm() > side_reach_m_ * side_reach_m_) reference = unit_or_zero(between);
+    }
     Vec3 direction;
     double gap;
     const double along = reference.dot(w);

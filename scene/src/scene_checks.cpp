@@ -134,11 +134,12 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
         "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
     scene.keyframes.clear();
   }
-  if (scene.mode == Mode::kHybrid && scene.contact)
+  if (scene.mode == Mode::kHybrid && scene.contact &&
+      infill_solver_of(scene) == InfillSolverKind::kPaper)
     fail_at(root, "contact",
-            "self-contact runs in the full-lattice modes (mass-spring, implicit, xpbd, bullet); "
-            "in hybrid mode the dense lattice the infill lays can still cross itself where the "
-            "coarse cloth folds tightly (docs/methods.md): choose a full-lattice scene.mode");
+            "self-contact in hybrid mode needs the smooth infill, which follows the coarse "
+            "cloth's sharp folds (docs/methods.md); infill.solver = \"paper\" does not: leave "
+            "infill.solver out or set it to \"smooth\"");
   if (is_full_lattice(scene.mode) && scene.infill) {
     unused_table("infill",
                  "[infill] settings need a mode with the infill (\"hybrid\" or \"infill\")");

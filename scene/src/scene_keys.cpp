@@ -55,8 +55,9 @@ constexpr KeyMeaning kMeanings[] = {
     {"ground.height", "a solid horizontal plane at this y that no node goes below"},
     {"ground.friction", "Coulomb friction of the cloth on the ground"},
     {"contact.thickness",
-     "self-contact (full-lattice modes): parts of the cloth not neighbours in it (2 thicknesses "
-     "apart at rest) stay this far apart, or a quarter of the lattice's spacing if more"},
+     "self-contact (full-lattice and hybrid modes): parts of the cloth not neighbours in it (2 "
+     "thicknesses apart at rest) stay this far apart, or a quarter of the lattice's spacing if "
+     "more; in hybrid mode the coarse physics' layers and the dense lattice's"},
     {"gravity.acceleration", "gravity; without [gravity] there is none"},
     {"wind.velocity", "mean wind; without [wind] there is none"},
     {"wind.drag", "normal-force coefficient of a flat plate"},
@@ -235,7 +236,7 @@ std::string keys_reference() {
       "corners = [[0.0, 2.0, 0.0], [1.5, 2.0, 0.0], [0.0, 1.0, 0.0], [1.5, 1.0, 0.0]]\n";
   std::map<std::string, SceneKey, std::less<>> read;
   const std::string solid_pole = "[pole]\nradius = 0.03\n";  // the keys of a standing pole
-  // Self-contact: the full-lattice modes' (scene_checks.cpp).
+  // Self-contact, in a full-lattice mode (the hybrid's is the same table).
   const std::string contact = "[scene]\nmode = \"mass-spring\"\n[contact]\n";
   for (const std::string& text : {std::string(), every_table, infill, solid_pole, contact}) {
     std::vector<SceneKey> keys;

@@ -162,6 +162,12 @@ std::optional<infill::CreaseRidgeParams> crease_ridge_params(const Scene& scene,
                                    material.stretch_modulus_n_m};
 }
 
+// Whether the dense lattice keeps its own layers apart: [contact] in hybrid
+// mode (infill mode refuses the table: no physics keeps its layers apart).
+bool dense_self_contact(const Scene& scene) {
+  return scene.contact.has_value() && scene.mode == Mode::kHybrid;
+}
+
 // The dense lattice filled by the paper's infill from coarse nodes: shared by
 // the infill and hybrid modes. Velocities are the frame-to-frame differences
 // (for the divergence checks and /frames/velocity), and the kinetic energy is
@@ -181,16 +187,34 @@ class DenseInfill {
             lattice_, infill::CellGrid::of(lattice_, coarse_rows, coarse_cols),
             {infill_solver_of(scene), paper_relax_sweeps_of(scene), wrinkle_params(scene, material),
              scene.wrinkles ? scene.wrinkles->rounds.value_or(2) : 0,
-             crease_ridge_params(scene, material)})),
+             crease_ridge_params(scene, material),
+             dense_self_contact(scene) ? infill::kContactFoldLimitRad : 0.0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
         obstacles_(physics::Obstacles::of(scene)),
+        grid_(infill::CellGrid::of(lattice_, coarse_rows, coarse_cols)),
         fixed_(model.lattice.node_count(), 0),
         mass_kg_(model.mass_kg),
         // The same start as the physics' (free nodes perturbed, pinned ones not).
         positions_(physics::initial_state(scene, model).x_m),
         previous_(positions_),
-        velocities_(positions_.size(), Vec3::Zero()) {}
+        velocities_(positions_.size(), Vec3::Zero()) {
+    if (!dense_self_contact(scene)) return;
+    // The dense layers at the cloth's thickness (a quarter of the dense
+    // spacing at least, as the physics holds its lattice). The coarse physics
+    // holds its layers max(thickness, a quarter of the coarse spacing) apart
+    // (obstacles.cpp): parts nearer than half that on the coarse surface are
+    // one layer, and keep the side they have.
+    const double thickness = scene.contact->thickness_m;
+    self_.emplace(lattice_,
+                  std::max(thickness, 0.25 * std::min(lattice_.spacing_x_m, lattice_.spacing_y_m)));
+    const double coarse_held =
+        std::max(thickness, 0.25 * std::min(grid_.col_stride * lattice_.spacing_x_m,
+                                            grid_.row_stride * lattice_.spacing_y_m));
+    self_->set_side_reach(0.5 * coarse_held);
+    surface_.resize(positions_.size());
+    pushed_from_.resize(positions_.size());
+  }
 
  public:
   const Lattice& lattice() const { return lattice_; }
@@ -208,7 +232,7 @@ class DenseInfill {
   }
   void register_stages(StageTimes& times) {
     solver_->register_stages(times);
-    if (obstacles_) contact_stage_ = times.add("contact", StageGroup::kInfill);
+    if (obstacles_ || self_) contact_stage_ = times.add("contact", StageGroup::kInfill);
   }
   /// Effects of the infill, after those of whatever drives the coarse nodes.
   void add_effects(std::vector<std::string>& effects) const {
@@ -234,8 +258,60 @@ class DenseInfill {
         obstacles_->settle(frame / fps_, lattice_, positions_, fixed_, previous_, kSettleRounds,
                            kSettleReach);
       });
+    if (self_) run_timed(times, contact_stage_, [&] { keep_layers_apart(coarse_m); });
     for (std::size_t i = 0; i < positions_.size(); ++i)
       velocities_[i] = (positions_[i] - previous_[i]) * fps_;
+  }
+  /// Self-contact of the dense lattice (hybrid [contact]): the coarse physics
+  /// keeps its triangles apart, so its surface seen at dense resolution
+  /// (CellGrid::coarse_surface) has no two layers crossing; every dense node
+  /// and triangle, and every two dense edges, are kept the thickness apart on
+  /// the side they have on it (SelfContact, sides from that surface). Where
+  /// the pass moved nodes, the fibers around them take back the lengths the
+  /// infill gave them, each sweep followed by the pass again (as settle() does
+  /// for the solids): a push spread along its fibers rather than into a few
+  /// links' stretch.
+  void keep_layers_apart(std::span<const Vec3> coarse_m) {
+    grid_.coarse_surface(lattice_, coarse_m, surface_);
+    std::copy(positions_.begin(), positions_.end(), pushed_from_.begin());
+    if (self_->project(positions_, {}, fixed_, surface_) == 0) return;
+    const int J = lattice_.rows, K = lattice_.cols;
+    int j0 = J, j1 = -1, k0 = K, k1 = -1;
+    for (int j = 0; j < J; ++j)
+      for (int k = 0; k < K; ++k)
+        if (positions_[lattice_.index(j, k)] != pushed_from_[lattice_.index(j, k)])
+          j0 = std::min(j0, j), j1 = std::max(j1, j), k0 = std::min(k0, k), k1 = std::max(k1, k);
+    j0 = std::max(0, j0 - kSettleReach), j1 = std::min(J - 1, j1 + kSettleReach);
+    k0 = std::max(0, k0 - kSettleReach), k1 = std::min(K - 1, k1 + kSettleReach);
+    // Inverse masses, relative: the box's free nodes 1, the rest 0.
+    const auto w = [&](int j, int k) {
+      if (j < j0 || j > j1 || k < k0 || k > k1) return 0.0;
+      return fixed_[lattice_.index(j, k)] ? 0.0 : 1.0;
+    };
+    const auto fiber = [&](int ja, int ka, int jb, int kb) {
+      const double wa = w(ja, ka), wb = w(jb, kb);
+      if (wa + wb == 0.0) return;
+      const std::size_t a = lattice_.index(ja, ka), b = lattice_.index(jb, kb);
+      const double target = (pushed_from_[b] - pushed_from_[a]).norm();
+      const Vec3 d = positions_[b] - positions_[a];
+      const double length = d.norm();
+      if (length == 0.0) return;
+      const Vec3 correction = (length - target) / ((wa + wb) * length) * d;
+      positions_[a] += wa * correction;
+      positions_[b] -= wb * correction;
+    };
+    // The box and one link around it (links from a node outside into the box).
+    const int ja = std::max(0, j0 - 1), jb = std::min(J - 1, j1 + 1);
+    const int ka = std::max(0, k0 - 1), kb = std::min(K - 1, k1 + 1);
+    for (int round = 0; round < kSettleRounds; ++round) {
+      for (int j = ja; j <= jb; ++j) {
+        for (int k = ka; k <= kb; ++k) {
+          if (k < kb) fiber(j, k, j, k + 1);
+          if (j < jb) fiber(j, k, j + 1, k);
+        }
+      }
+      if (self_->project(positions_, {}, fixed_, surface_) == 0) break;
+    }
   }
   void forget_velocities() { std::fill(velocities_.begin(), velocities_.end(), Vec3::Zero()); }
   /// The dense part of a SimulationState.
@@ -263,6 +339,10 @@ class DenseInfill {
   double fps_;
   bool wrinkles_;
   std::optional<physics::Obstacles> obstacles_;
+  infill::CellGrid grid_;
+  std::optional<physics::SelfContact> self_;  ///< hybrid [contact]: the dense lattice's
+  std::vector<Vec3> surface_;                 ///< [J*K] the coarse surface at each dense node, m
+  std::vector<Vec3> pushed_from_;  ///< [J*K] the dense lattice before the self-contact pass, m
   int contact_stage_ = -1;
   /// [J*K] 1: a node the contact pass leaves where the infill put it: held by
   /// the infill (pins, corners). Not the dense nodes on coarse nodes: the

@@ -72,6 +72,26 @@ TEST(SelfContact, ALayerThatPassedThroughGoesBackToItsSide) {
   EXPECT_NEAR(layer_gap(lattice, now), -0.02, 2e-4);
 }
 
+TEST(SelfContact, APairCloseAtTheStartKeepsTheSideItHasWithASideReach) {
+  // The hybrid's use: the sides come from the coarse surface, on which one
+  // layer's parts lie in one plane. The folded-back layer is 10 mm below the
+  // other now and was 10 mm above at the start.
+  const Lattice lattice = cloth();
+  const auto projected = [&](double start_gap_m, double reach_m) {
+    SelfContact contact(lattice, 0.02);
+    contact.set_side_reach(reach_m);
+    std::vector<Vec3> x = folded(lattice, -0.01);
+    contact.project(x, {}, {}, folded(lattice, start_gap_m));
+    return layer_gap(lattice, x);
+  };
+  // Without a reach the start's side holds: back above, to the thickness.
+  EXPECT_NEAR(projected(0.01, 0.0), 0.02, 2e-4);
+  // Every pair closer than the reach at the start: the side it has now.
+  EXPECT_NEAR(projected(0.01, 0.1), -0.02, 2e-4);
+  // A start farther apart than the reach still decides.
+  EXPECT_NEAR(projected(0.03, 0.015), 0.02, 2e-4);
+}
+
 TEST(SelfContact, LeavesAFlatOrAFarClothAlone) {
   const Lattice lattice = cloth();
   SelfContact contact(lattice, 0.02);

@@ -12,7 +12,7 @@ namespace flagsim::infill {
 
 SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
                            std::optional<WrinkleParams> wrinkles,
-                           std::optional<CreaseRidgeParams> creases)
+                           std::optional<CreaseRidgeParams> creases, double fold_limit_rad)
     : lattice_(fine),
       grid_(grid),
       spline_(fine, grid),
@@ -22,6 +22,11 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
       coarse_col_stretch_(std::size_t(grid.coarse_rows - 1) * std::size_t(grid.coarse_cols)),
       wrinkles_(wrinkles) {
   surface_.resize(fine.node_count());
+  fold_limit_rad_ = fold_limit_rad;
+  if (fold_limit_rad_ > 0.0) {
+    fold_weight_.resize(grid.coarse_count());
+    flat_.resize(fine.node_count());
+  }
   correction_.resize(fine.node_count());
   smoothed_.resize(fine.node_count());
   // 3.3's weights along the rows: row links between coarse row-link midpoints,
@@ -45,7 +50,7 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
     coarser_ = std::make_unique<SmoothInfill>(
         half,
         CellGrid{grid.coarse_rows, grid.coarse_cols, grid.row_stride / 2, grid.col_stride / 2},
-        wrinkles);
+        wrinkles, std::nullopt, fold_limit_rad);
     coarser_positions_.resize(half.node_count());
     coarser_offsets_.resize(std::size_t(half.rows) * std::size_t(fine.cols));
   }
@@ -329,6 +334,53 @@ void SmoothInfill::set_memory(std::span<const double> memory) {
   if (coarser_) coarser_->set_memory(memory.subspan(last_offset_.size()));
 }
 
+void SmoothInfill::follow_sharp_folds(std::span<const Vec3> coarse_m) {
+  // Each coarse node's weight from the sharpest turn of its row or column
+  // there: 1 (the spline) up to fold_limit_rad_, 0 (the coarse triangles) from
+  // twice that, linear between. The weights are interpolated over each cell
+  // bilinearly, and a dense node with a weight under 1 moves from the spline to
+  // flat + weight (spline - flat).
+  const int Jc = grid_.coarse_rows, Kc = grid_.coarse_cols;
+  const auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
+    const Vec3 in = coarse_m[b] - coarse_m[a], out = coarse_m[c] - coarse_m[b];
+    const double lengths = in.norm() * out.norm();
+    return lengths > 0.0 ? std::acos(std::clamp(in.dot(out) / lengths, -1.0, 1.0)) : 0.0;
+  };
+  bool any = false;
+  for (int jc = 0; jc < Jc; ++jc) {
+    for (int kc = 0; kc < Kc; ++kc) {
+      double sharpest = 0.0;
+      if (kc > 0 && kc + 1 < Kc)
+        sharpest = turn(grid_.coarse_index(jc, kc - 1), grid_.coarse_index(jc, kc),
+                        grid_.coarse_index(jc, kc + 1));
+      if (jc > 0 && jc + 1 < Jc)
+        sharpest =
+            std::max(sharpest, turn(grid_.coarse_index(jc - 1, kc), grid_.coarse_index(jc, kc),
+                                    grid_.coarse_index(jc + 1, kc)));
+      const double weight = std::clamp(2.0 - sharpest / fold_limit_rad_, 0.0, 1.0);
+      fold_weight_[grid_.coarse_index(jc, kc)] = weight;
+      any = any || weight < 1.0;
+    }
+  }
+  if (!any) return;  // the spline everywhere, to the bit
+  grid_.coarse_surface(lattice_, coarse_m, flat_);
+  for (int j = 0; j < lattice_.rows; ++j) {
+    const int jc = std::min(j / grid_.row_stride, Jc - 2);
+    const double v = double(j - jc * grid_.row_stride) / grid_.row_stride;
+    for (int k = 0; k < lattice_.cols; ++k) {
+      const int kc = std::min(k / grid_.col_stride, Kc - 2);
+      const double u = double(k - kc * grid_.col_stride) / grid_.col_stride;
+      const double weight = (1.0 - v) * ((1.0 - u) * fold_weight_[grid_.coarse_index(jc, kc)] +
+                                         u * fold_weight_[grid_.coarse_index(jc, kc + 1)]) +
+                            v * ((1.0 - u) * fold_weight_[grid_.coarse_index(jc + 1, kc)] +
+                                 u * fold_weight_[grid_.coarse_index(jc + 1, kc + 1)]);
+      if (weight >= 1.0) continue;
+      const std::size_t i = lattice_.index(j, k);
+      surface_[i] = flat_[i] + weight * (surface_[i] - flat_[i]);
+    }
+  }
+}
+
 void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> positions_m,
                         StageTimes* times) {
   assert(coarse_m.size() == grid_.coarse_count() && positions_m.size() == lattice_.node_count());
@@ -337,6 +389,7 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
               [&] { coarser_->fill(coarse_m, coarser_positions_, nullptr); });
   run_timed(times, stages_.surface, [&] {  // 3.1-3.2: the surface, kept for the level above and 3.5
     spline_.evaluate(coarse_m, surface_);
+    if (fold_limit_rad_ > 0.0) follow_sharp_folds(coarse_m);
     std::copy(surface_.begin(), surface_.end(), positions_m.begin());
     if (coarser_) add_coarser_offsets(positions_m);
   });

@@ -211,3 +211,74 @@ TEST(SmoothInfillWrinkles, AWrinkleStaysWhereItIsWhileTheCornersAreHeld) {
 
 }  // namespace
 }  // namespace flagsim::infill
+
+namespace flagsim::infill {
+namespace {
+
+// A coarse cloth folded back on itself: a hairpin at coarse column 3 of 7
+// (dense column 24), the folded-back layer 30 mm above the other. Returns the
+// infill's dense lattice.
+std::vector<Vec3> infill_of_a_hairpin(double fold_limit_rad, std::vector<Vec3>* flat) {
+  const Lattice fine = Lattice::rectangle(33, 49, 1.2, 0.8, Vec3::Zero());
+  const CellGrid grid = CellGrid::of(fine, 5, 7);
+  std::vector<Vec3> coarse(grid.coarse_count());
+  for (int jc = 0; jc < 5; ++jc)
+    for (int kc = 0; kc < 7; ++kc) {
+      const double u = (kc - 3) * 0.2, y = -0.2 * jc;
+      coarse[grid.coarse_index(jc, kc)] = u <= 0.0 ? Vec3(u, y, 0.0) : Vec3(-u, y, 0.03);
+    }
+  SmoothInfill infill(fine, grid, std::nullopt, std::nullopt, fold_limit_rad);
+  std::vector<Vec3> dense(fine.node_count(), Vec3::Zero());
+  infill.fill(coarse, dense, nullptr);
+  if (flat) {
+    flat->resize(fine.node_count());
+    grid.coarse_surface(fine, coarse, *flat);
+  }
+  return dense;
+}
+
+// Largest distance of `dense` from the coarse triangles over dense columns
+// 16-32 (the cells on either side of the fold), m.
+double off_the_triangles_by_the_fold(const std::vector<Vec3>& dense,
+                                     const std::vector<Vec3>& flat) {
+  const Lattice fine = Lattice::rectangle(33, 49, 1.2, 0.8, Vec3::Zero());
+  double off = 0.0;
+  for (int j = 0; j < fine.rows; ++j)
+    for (int k = 16; k <= 32; ++k)
+      off = std::max(off, (dense[fine.index(j, k)] - flat[fine.index(j, k)]).norm());
+  return off;
+}
+
+TEST(SmoothInfill, WithAFoldLimitTheSurfaceStaysCloserToAHairpinOfTheCoarseCloth) {
+  // The degree-7 spline rounds the fold with an overshoot: its lattice lies
+  // 9.2-10.3 mm off the coarse triangles there, a third of the 30 mm between
+  // the layers (on pole_wrap, pressed against the pole, 57-69 mm: through the
+  // other layer). With the hybrid [contact]'s limit: 4.8-5.6 mm.
+  std::vector<Vec3> flat;
+  const std::vector<Vec3> spline = infill_of_a_hairpin(0.0, &flat);
+  const std::vector<Vec3> limited = infill_of_a_hairpin(kContactFoldLimitRad, nullptr);
+  EXPECT_GT(off_the_triangles_by_the_fold(spline, flat), 0.0085);
+  EXPECT_LT(off_the_triangles_by_the_fold(limited, flat), 0.0065);
+}
+
+TEST(SmoothInfill, AFoldLimitLeavesAClothThatFoldsLessToTheBit) {
+  // A cloth bent along its rows by 0.5 rad per coarse link (under the 1 rad
+  // limit): the same lattice with the limit as without.
+  const Lattice fine = Lattice::rectangle(33, 49, 1.2, 0.8, Vec3::Zero());
+  const CellGrid grid = CellGrid::of(fine, 5, 7);
+  std::vector<Vec3> coarse(grid.coarse_count());
+  for (int jc = 0; jc < 5; ++jc)
+    for (int kc = 0; kc < 7; ++kc) {
+      const double angle = 0.5 * kc, radius = 0.2 / 0.5;
+      coarse[grid.coarse_index(jc, kc)] =
+          Vec3(radius * std::sin(angle), -0.2 * jc, radius * (1.0 - std::cos(angle)));
+    }
+  std::vector<Vec3> plain(fine.node_count(), Vec3::Zero()), limited = plain;
+  SmoothInfill(fine, grid).fill(coarse, plain, nullptr);
+  SmoothInfill(fine, grid, std::nullopt, std::nullopt, kContactFoldLimitRad)
+      .fill(coarse, limited, nullptr);
+  EXPECT_EQ(plain, limited);
+}
+
+}  // namespace
+}  // namespace flagsim::infill

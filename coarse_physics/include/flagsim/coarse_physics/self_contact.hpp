@@ -71,6 +71,14 @@ class SelfContact {
   int project(std::span<Vec3> x_m, std::span<Vec3> v_m_s, std::span<const std::uint8_t> pinned,
               std::span<const Vec3> before_m);
 
+  /// With `before_m`, a pair closer than `reach_m` there (a node to its
+  /// triangle's plane, two edges between their closest points) keeps the side
+  /// it has now rather than the one it had there: for a `before_m` that is not
+  /// the cloth a moment ago but a coarser surface (the hybrid's dense lattice
+  /// takes its sides from the coarse one, on which parts of one layer lie in
+  /// one plane). 0 (the default): every pair keeps its side at `before_m`.
+  void set_side_reach(double reach_m) { side_reach_m_ = reach_m; }
+
   /// The smallest distance between non-neighbouring parts (a node and a
   /// triangle, or two edges between their ends) among those within `reach_m`
   /// of each other, m (reach_m when none is): what the tests read.
@@ -104,6 +112,7 @@ class SelfContact {
 
   Lattice lattice_;
   double thickness_m_;
+  double side_reach_m_ = 0.0;    ///< set_side_reach
   double margin_m_;              ///< candidates are found within thickness + margin
   int block_cells_;              ///< cells per block side
   int block_rows_, block_cols_;  ///< blocks down and across

@@ -4,8 +4,10 @@
 // split the dense lattice into (Jc-1) x (Kc-1) cells; neighbouring cells share
 // the dense nodes of their common edge.
 #include <cstddef>
+#include <span>
 
 #include "flagsim/core/lattice.hpp"
+#include "flagsim/core/vec3.hpp"
 
 namespace flagsim::infill {
 
@@ -24,6 +26,13 @@ struct CellGrid {
   std::size_t dense_index(const Lattice& fine, int jc, int kc) const {
     return fine.index(jc * row_stride, kc * col_stride);
   }
+  /// Every dense node's point on the coarse lattice's triangles, out_m [J*K]
+  /// from coarse_m [Jc*Kc]: linear on each triangle of a cell, the cell
+  /// split along its diagonal (jc, kc)-(jc+1, kc+1) (as self_contact.hpp
+  /// splits it), at the dense node's place in the cell. The coarse surface
+  /// seen at dense resolution, without the infill's curvature or relief.
+  void coarse_surface(const Lattice& fine, std::span<const Vec3> coarse_m,
+                      std::span<Vec3> out_m) const;
 };
 
 }  // namespace flagsim::infill

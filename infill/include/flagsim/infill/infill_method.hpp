@@ -31,6 +31,12 @@ struct FillReport {
   double coarse_offset_m = 0.0;
 };
 
+/// The hybrid's [contact]: a coarse fiber turning by more than this at a
+/// coarse node (57 degrees; fully past twice it) draws the smooth infill's
+/// surface toward the coarse triangles there (SmoothInfill). The default
+/// flag's flapping turns its 9 x 13 coarse fibers by 10-40 degrees.
+inline constexpr double kContactFoldLimitRad = 1.0;
+
 struct InfillOptions {
   InfillSolverKind solver = InfillSolverKind::kSmooth;
   int relax_sweeps = 1000;  ///< the paper solver's 3.4 cap
@@ -39,6 +45,10 @@ struct InfillOptions {
   /// [creases]: the coarse physics' crease lines drawn as ridges (smooth solver),
   /// or in infill mode the dense lattice's own (both solvers)
   std::optional<CreaseRidgeParams> creases;
+  /// Smooth solver: above this turning of a coarse fiber at a coarse node,
+  /// rad, the mean surface is drawn toward the coarse triangles (SmoothInfill,
+  /// fold_limit_rad); 0: never. The hybrid's [contact] sets it.
+  double fold_limit_rad = 0.0;
 };
 
 class InfillMethod {

@@ -6,6 +6,12 @@
 //  3.1 boundary: the coarse nodes (the physics' own, no slack added) define
 //      one smooth mean surface over the cloth (spline_surface.hpp); every
 //      dense node, on the coarse lines and between them, starts on it.
+//      With fold_limit_rad (the hybrid's [contact]), where the coarse cloth
+//      folds sharply the surface is drawn toward the coarse triangles: the
+//      spline overshoots a hairpin (on pole_wrap, a coarse column folded back
+//      on the one before it, the spline alone crosses itself in 7 of 121
+//      frames), and what follows a hairpin closely enough keeps the sides of
+//      the coarse layers the physics keeps apart.
 //  3.2 initial move: the paper interpolates the motion of a fiber's ends to
 //      its inside. The surface is linear in the coarse nodes, so the surface of
 //      the new nodes is the old one moved by the interpolated motion: 3.2 and
@@ -141,9 +147,13 @@ class SmoothInfill final : public InfillMethod {
   /// @param wrinkles  step 3.5, or nullopt to leave it out (no [wrinkles] table)
   /// @param creases   the coarse physics' creases drawn as ridges (crease_ridges.hpp;
   ///                   this level only: the coarser levels have none), or nullopt
+  /// @param fold_limit_rad  where a coarse row or column turns by more than this
+  ///                   at a coarse node, 3.1's surface is drawn toward the coarse
+  ///                   triangles (follow_sharp_folds); 0: never
   SmoothInfill(const Lattice& fine, const CellGrid& grid,
                std::optional<WrinkleParams> wrinkles = std::nullopt,
-               std::optional<CreaseRidgeParams> creases = std::nullopt);
+               std::optional<CreaseRidgeParams> creases = std::nullopt,
+               double fold_limit_rad = 0.0);
 
   void hold(std::span<const std::uint8_t> nodes) override;
   void register_stages(StageTimes& times) override;
@@ -201,7 +211,13 @@ class SmoothInfill final : public InfillMethod {
   std::optional<CreaseRidges> dense_creases_;     ///< infill mode's, at dense resolution
   std::vector<Vec3> dense_normals_, dense_copy_;  ///< add_dense_ridges' scratch
   std::vector<Vec3> surface_;  ///< this frame's mean surface (3.1), read by 3.5 and the level above
-  bool smooths_ = false;       ///< this level runs the kSmoothingCycles (set by the finest level)
+  /// Where the coarse cloth folds sharply, the surface between its coarse
+  /// nodes drawn toward the coarse triangles (see the constructor).
+  void follow_sharp_folds(std::span<const Vec3> coarse_m);
+  double fold_limit_rad_ = 0.0;
+  std::vector<double> fold_weight_;  ///< [Jc*Kc] per coarse node: 1 spline, 0 coarse triangles
+  std::vector<Vec3> flat_;           ///< [J*K] the coarse triangles at the dense nodes
+  bool smooths_ = false;  ///< this level runs the kSmoothingCycles (set by the finest level)
   std::vector<Vec3> correction_, smoothed_;  ///< smooth_correction's work buffers
   std::vector<Vec3> normals_;                ///< 3.5 and the ridges: the surface's normals
   std::vector<double> last_offset_;          ///< 3.5: last frame's offset along its normal, m
