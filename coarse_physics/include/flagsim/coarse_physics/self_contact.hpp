@@ -33,7 +33,8 @@
 // looks at those alone: a pair closer than `thickness` now was closer than
 // thickness + margin then. To find them, nodes, triangles and edges are
 // grouped in blocks of up to 4 x 4 cells; a pair of blocks is looked into only
-// when their boxes (widened by the reach) overlap, and a block with itself or
+// when their boxes (widened by the reach) overlap (found by sweep and prune
+// along the lattice's longer side, in a fixed order), and a block with itself or
 // a neighbouring block only when their triangles' normals do not fit in one
 // cone of kFlatAngle about a common axis: a patch within 55 degrees of one
 // plane cannot bring parts more than 2 thicknesses apart in the cloth (1 / cos
@@ -131,7 +132,9 @@ class SelfContact {
   // Per block: box low and high corners; its normals' cone (unit axis, half-angle rad).
   std::vector<Vec3> low_, high_, axis_;
   std::vector<double> spread_;
-  std::vector<Vec3> normals_;  ///< per triangle (2 per cell), at x
+  std::vector<Vec3> normals_;               ///< per triangle (2 per cell), at x
+  std::vector<std::uint32_t> block_order_;  ///< blocks by their box's low end (find_candidates)
+  std::vector<std::array<std::uint32_t, 2>> block_pairs_;  ///< blocks whose boxes overlap
 };
 
 }  // namespace flagsim::physics
