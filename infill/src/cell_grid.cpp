@@ -1,6 +1,5 @@
 #include "flagsim/infill/cell_grid.hpp"
 
-#include <algorithm>
 #include <cassert>
 
 #include "flagsim/infill/fiber.hpp"
@@ -18,11 +17,8 @@ void CellGrid::coarse_surface(const Lattice& fine, std::span<const Vec3> coarse_
                               std::span<Vec3> out_m) const {
   assert(coarse_m.size() == coarse_count() && out_m.size() == fine.node_count());
   for (int j = 0; j < fine.rows; ++j) {
-    const int jc = std::min(j / row_stride, coarse_rows - 2);
-    const double v = double(j - jc * row_stride) / row_stride;
     for (int k = 0; k < fine.cols; ++k) {
-      const int kc = std::min(k / col_stride, coarse_cols - 2);
-      const double u = double(k - kc * col_stride) / col_stride;
+      const auto [jc, kc, u, v] = place(j, k);
       const Vec3& a00 = coarse_m[coarse_index(jc, kc)];
       const Vec3& a01 = coarse_m[coarse_index(jc, kc + 1)];
       const Vec3& a10 = coarse_m[coarse_index(jc + 1, kc)];

@@ -192,7 +192,6 @@ class DenseInfill {
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
         obstacles_(physics::Obstacles::of(scene)),
-        grid_(infill::CellGrid::of(lattice_, coarse_rows, coarse_cols)),
         fixed_(model.lattice.node_count(), 0),
         mass_kg_(model.mass_kg),
         // The same start as the physics' (free nodes perturbed, pinned ones not).
@@ -208,9 +207,10 @@ class DenseInfill {
     const double thickness = scene.contact->thickness_m;
     self_.emplace(lattice_,
                   std::max(thickness, 0.25 * std::min(lattice_.spacing_x_m, lattice_.spacing_y_m)));
+    const infill::CellGrid& grid = solver_->grid();
     const double coarse_held =
-        std::max(thickness, 0.25 * std::min(grid_.col_stride * lattice_.spacing_x_m,
-                                            grid_.row_stride * lattice_.spacing_y_m));
+        std::max(thickness, 0.25 * std::min(grid.col_stride * lattice_.spacing_x_m,
+                                            grid.row_stride * lattice_.spacing_y_m));
     self_->set_side_reach(0.5 * coarse_held);
     surface_.resize(positions_.size());
     pushed_from_.resize(positions_.size());
@@ -272,7 +272,7 @@ class DenseInfill {
   /// for the solids): a push spread along its fibers rather than into a few
   /// links' stretch.
   void keep_layers_apart(std::span<const Vec3> coarse_m) {
-    grid_.coarse_surface(lattice_, coarse_m, surface_);
+    solver_->grid().coarse_surface(lattice_, coarse_m, surface_);
     std::copy(positions_.begin(), positions_.end(), pushed_from_.begin());
     if (self_->project(positions_, {}, fixed_, surface_) == 0) return;
     const int J = lattice_.rows, K = lattice_.cols;
@@ -339,7 +339,6 @@ class DenseInfill {
   double fps_;
   bool wrinkles_;
   std::optional<physics::Obstacles> obstacles_;
-  infill::CellGrid grid_;
   std::optional<physics::SelfContact> self_;  ///< hybrid [contact]: the dense lattice's
   std::vector<Vec3> surface_;                 ///< [J*K] the coarse surface at each dense node, m
   std::vector<Vec3> pushed_from_;  ///< [J*K] the dense lattice before the self-contact pass, m

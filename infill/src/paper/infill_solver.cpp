@@ -108,9 +108,8 @@ void InfillSolver::set_memory(std::span<const double> memory) {
 
 std::size_t InfillSolver::cell_corner_of(std::size_t node) const {
   const int j = int(node / std::size_t(lattice_.cols)), k = int(node % std::size_t(lattice_.cols));
-  const int jc = std::min(j / grid_.row_stride, grid_.coarse_rows - 2);
-  const int kc = std::min(k / grid_.col_stride, grid_.coarse_cols - 2);
-  return lattice_.index(jc * grid_.row_stride, kc * grid_.col_stride);
+  const CellGrid::Place at = grid_.place(j, k);
+  return grid_.dense_index(lattice_, at.jc, at.kc);
 }
 
 Vec3 InfillSolver::cell_normal(std::size_t corner, std::span<const Vec3> positions_m) const {

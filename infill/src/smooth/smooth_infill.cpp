@@ -365,11 +365,8 @@ void SmoothInfill::follow_sharp_folds(std::span<const Vec3> coarse_m) {
   if (!any) return;  // the spline everywhere, to the bit
   grid_.coarse_surface(lattice_, coarse_m, flat_);
   for (int j = 0; j < lattice_.rows; ++j) {
-    const int jc = std::min(j / grid_.row_stride, Jc - 2);
-    const double v = double(j - jc * grid_.row_stride) / grid_.row_stride;
     for (int k = 0; k < lattice_.cols; ++k) {
-      const int kc = std::min(k / grid_.col_stride, Kc - 2);
-      const double u = double(k - kc * grid_.col_stride) / grid_.col_stride;
+      const auto [jc, kc, u, v] = grid_.place(j, k);
       const double weight = (1.0 - v) * ((1.0 - u) * fold_weight_[grid_.coarse_index(jc, kc)] +
                                          u * fold_weight_[grid_.coarse_index(jc, kc + 1)]) +
                             v * ((1.0 - u) * fold_weight_[grid_.coarse_index(jc + 1, kc)] +

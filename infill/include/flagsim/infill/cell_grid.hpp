@@ -3,6 +3,7 @@
 // (jc, kc) is dense node (jc * row_stride, kc * col_stride). The coarse nodes
 // split the dense lattice into (Jc-1) x (Kc-1) cells; neighbouring cells share
 // the dense nodes of their common edge.
+#include <algorithm>
 #include <cstddef>
 #include <span>
 
@@ -25,6 +26,21 @@ struct CellGrid {
   /// Dense index of coarse node (jc, kc) in `fine`.
   std::size_t dense_index(const Lattice& fine, int jc, int kc) const {
     return fine.index(jc * row_stride, kc * col_stride);
+  }
+  /// Where dense node (j, k) lies: its cell (jc, kc), the last one for the
+  /// last dense row or column, and its place in it, u along the row and v
+  /// down the column, in [0, 1].
+  struct Place {
+    int jc = 0, kc = 0;
+    double u = 0.0, v = 0.0;
+  };
+  Place place(int j, int k) const {
+    Place at;
+    at.jc = std::min(j / row_stride, coarse_rows - 2);
+    at.kc = std::min(k / col_stride, coarse_cols - 2);
+    at.v = double(j - at.jc * row_stride) / row_stride;
+    at.u = double(k - at.kc * col_stride) / col_stride;
+    return at;
   }
   /// Every dense node's point on the coarse lattice's triangles, out_m [J*K]
   /// from coarse_m [Jc*Kc]: linear on each triangle of a cell, the cell
