@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace flagsim::physics {
 namespace {
@@ -94,6 +95,42 @@ Vec3 unit_or_zero(const Vec3& v) {
   return n > 0.0 ? Vec3(v / n) : Vec3::Zero();
 }
 
+// Whether one cone about a common axis of half-angle kFlatAngle holds two
+// cones (unit axis, half-angle rad; `same`: one cone): half-angle (theta +
+// alpha_a + alpha_b) / 2. A zero axis (normals that cancel) is never flat.
+bool flat_together(const Vec3& axis_a, double spread_a, const Vec3& axis_b, double spread_b,
+                   bool same) {
+  if (axis_a.squaredNorm() == 0.0 || axis_b.squaredNorm() == 0.0) return false;
+  const double between = std::acos(std::clamp(axis_a.dot(axis_b), -1.0, 1.0));
+  const double half_angle = same ? spread_a : 0.5 * (between + spread_a + spread_b);
+  return half_angle <= kFlatAngle;
+}
+
+// Appends to `pairs` every pair {a, b}, a <= b (each box with itself too),
+// of the boxes [low, high] that overlap, by sweep and prune along `axis`: the
+// boxes sorted by their low end (`order`, scratch), a box meets only those
+// that start before it ends. Unordered.
+void overlapping_pairs(std::span<const Vec3> low, std::span<const Vec3> high, int axis,
+                       std::vector<std::uint32_t>& order,
+                       std::vector<std::array<std::uint32_t, 2>>& pairs) {
+  const std::size_t boxes = low.size();
+  order.resize(boxes);
+  for (std::size_t i = 0; i < boxes; ++i) order[i] = std::uint32_t(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return low[a][axis] < low[b][axis] || (low[a][axis] == low[b][axis] && a < b);
+  });
+  for (std::size_t p = 0; p < boxes; ++p) {
+    const std::uint32_t a = order[p];
+    pairs.push_back({a, a});
+    for (std::size_t q = p + 1; q < boxes && !(low[order[q]][axis] > high[a][axis]); ++q) {
+      const std::uint32_t b = order[q];
+      if ((low[a].array() > high[b].array()).any() || (low[b].array() > high[a].array()).any())
+        continue;
+      pairs.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+}
+
 }  // namespace
 
 SelfContact::SelfContact(const Lattice& lattice, double thickness_m)
@@ -112,6 +149,14 @@ SelfContact::SelfContact(const Lattice& lattice, double thickness_m)
   high_.resize(blocks);
   axis_.resize(blocks);
   spread_.resize(blocks);
+  normal_sum_.resize(blocks);
+  super_rows_ = (block_rows_ - 1) / kSuperBlock + 1;
+  super_cols_ = (block_cols_ - 1) / kSuperBlock + 1;
+  const std::size_t supers = std::size_t(super_rows_) * std::size_t(super_cols_);
+  super_low_.resize(supers);
+  super_high_.resize(supers);
+  super_axis_.resize(supers);
+  super_spread_.resize(supers);
   normals_.resize(std::size_t(J - 1) * std::size_t(K - 1) * 2);
   // Every edge once, owned by a cell: its top, left and diagonal, the right
   // edges of the last column and the bottom edges of the last row.
@@ -173,16 +218,18 @@ void SelfContact::find_candidates(std::span<const Vec3> x_m, double reach_m) {
   edge_edges_.clear();
   const int J = lattice_.rows, K = lattice_.cols, B = block_cells_;
   const std::size_t cells_across = std::size_t(K - 1);
-  // Every triangle's unit normal at x.
-  for (int j = 0; j + 1 < J; ++j)
-    for (int k = 0; k + 1 < K; ++k) {
-      const std::size_t cell = std::size_t(j) * cells_across + std::size_t(k);
-      for (int half = 0; half < 2; ++half) {
-        const auto c = corners(std::uint32_t(cell), half);
-        normals_[2 * cell + std::size_t(half)] =
-            unit_or_zero((x_m[c[1]] - x_m[c[0]]).cross(x_m[c[2]] - x_m[c[0]]));
-      }
+  // Every triangle's unit normal at x (the corners of corners(), by row).
+  for (int j = 0; j + 1 < J; ++j) {
+    const Vec3* top = &x_m[lattice_.index(j, 0)];
+    const Vec3* bottom = &x_m[lattice_.index(j + 1, 0)];
+    Vec3* normal = &normals_[2 * std::size_t(j) * cells_across];
+    for (int k = 0; k + 1 < K; ++k, normal += 2) {
+      const Vec3 along = top[k + 1] - top[k], across = bottom[k + 1] - top[k],
+                 down = bottom[k] - top[k];
+      normal[0] = unit_or_zero(along.cross(across));
+      normal[1] = unit_or_zero(across.cross(down));
     }
+  }
   // Each block's box (its cells' nodes) and normal cone.
   const double infinity = std::numeric_limits<double>::infinity();
   for (int bj = 0; bj < block_rows_; ++bj)
@@ -205,6 +252,7 @@ void SelfContact::find_candidates(std::span<const Vec3> x_m, double reach_m) {
           const std::size_t cell = std::size_t(j) * cells_across + std::size_t(k);
           sum += normals_[2 * cell] + normals_[2 * cell + 1];
         }
+      normal_sum_[b] = sum;
       const Vec3 axis = unit_or_zero(sum);
       double cos_min = 1.0;
       for (int j = j0; j < j1; ++j)
@@ -277,44 +325,85 @@ void SelfContact::find_candidates(std::span<const Vec3> x_m, double reach_m) {
       }
     }
   };
-  // The pairs of blocks whose boxes overlap, by sweep and prune along the
-  // lattice's longer side (the boxes sorted by their low end: a block meets
-  // only those that start before it ends), then visited in the order of a loop
-  // over every pair a <= b, so the candidates, and so the projection after
-  // them, are the same bits as that loop's. A flag laid anew each frame (the
-  // hybrid's dense lattice) finds its pairs every frame: the loop over all
-  // pairs of its 1536 blocks was half the search.
-  const std::size_t blocks = low_.size();
-  const int axis = lattice_.spacing_x_m * (K - 1) >= lattice_.spacing_y_m * (J - 1) ? 0 : 1;
-  block_order_.resize(blocks);
-  for (std::size_t i = 0; i < blocks; ++i) block_order_[i] = std::uint32_t(i);
-  std::sort(block_order_.begin(), block_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return low_[a][axis] < low_[b][axis] || (low_[a][axis] == low_[b][axis] && a < b);
-  });
-  block_pairs_.clear();
-  for (std::size_t p = 0; p < blocks; ++p) {
-    const std::uint32_t a = block_order_[p];
-    block_pairs_.push_back({a, a});
-    for (std::size_t q = p + 1; q < blocks && !(low_[block_order_[q]][axis] > high_[a][axis]);
-         ++q) {
-      const std::uint32_t b = block_order_[q];
-      if ((low_[a].array() > high_[b].array()).any() || (low_[b].array() > high_[a].array()).any())
-        continue;
-      block_pairs_.push_back({std::min(a, b), std::max(a, b)});
+  // The pairs of blocks whose boxes overlap, found among the pairs of
+  // super-blocks whose boxes overlap (sweep and prune along the lattice's
+  // longer side), then visited in the order of a loop over every pair a <= b,
+  // so the candidates, and so the projection after them, are those of that
+  // loop. Two super-blocks (or one) whose normals fit in one cone of
+  // kFlatAngle and that touch in the lattice are one flat patch, which cannot
+  // touch itself: none of their blocks' pairs is looked into. A flag laid anew
+  // each frame (the hybrid's dense lattice, 1536 blocks) finds its pairs every
+  // frame, and most of it is flat at 16 cells.
+  for (int sj = 0; sj < super_rows_; ++sj)
+    for (int sk = 0; sk < super_cols_; ++sk) {
+      const std::size_t s = std::size_t(sj) * std::size_t(super_cols_) + std::size_t(sk);
+      const int bj0 = sj * kSuperBlock, bj1 = std::min(block_rows_, bj0 + kSuperBlock);
+      const int bk0 = sk * kSuperBlock, bk1 = std::min(block_cols_, bk0 + kSuperBlock);
+      Vec3 low = Vec3::Constant(infinity), high = Vec3::Constant(-infinity), sum = Vec3::Zero();
+      for (int bj = bj0; bj < bj1; ++bj)
+        for (int bk = bk0; bk < bk1; ++bk) {
+          const std::size_t b = std::size_t(bj) * std::size_t(block_cols_) + std::size_t(bk);
+          low = low.cwiseMin(low_[b]);
+          high = high.cwiseMax(high_[b]);
+          sum += normal_sum_[b];
+        }
+      // Its cone holds every block's: a normal within alpha_b of its block's
+      // axis is within alpha_b + angle(axis, axis_b) of the super-block's.
+      const Vec3 axis = unit_or_zero(sum);
+      double spread = 0.0;
+      for (int bj = bj0; bj < bj1; ++bj)
+        for (int bk = bk0; bk < bk1; ++bk) {
+          const std::size_t b = std::size_t(bj) * std::size_t(block_cols_) + std::size_t(bk);
+          spread = axis_[b].squaredNorm() == 0.0
+                       ? std::numbers::pi
+                       : std::max(spread, std::acos(std::clamp(axis.dot(axis_[b]), -1.0, 1.0)) +
+                                              spread_[b]);
+        }
+      super_low_[s] = low;
+      super_high_[s] = high;
+      super_axis_[s] = axis;
+      super_spread_[s] = std::min(spread, std::numbers::pi);
     }
+  const int axis = lattice_.spacing_x_m * (K - 1) >= lattice_.spacing_y_m * (J - 1) ? 0 : 1;
+  super_pairs_.clear();
+  overlapping_pairs(super_low_, super_high_, axis, block_order_, super_pairs_);
+  block_pairs_.clear();
+  for (const auto& [first, second] : super_pairs_) {
+    const int aj = int(first) / super_cols_, ak = int(first) % super_cols_;
+    const int bj = int(second) / super_cols_, bk = int(second) % super_cols_;
+    if (std::abs(aj - bj) <= 1 && std::abs(ak - bk) <= 1 &&
+        flat_together(super_axis_[first], super_spread_[first], super_axis_[second],
+                      super_spread_[second], first == second))
+      continue;
+    const auto blocks_of = [&](int sj, int sk) {
+      std::array<int, 4> range{sj * kSuperBlock, std::min(block_rows_, (sj + 1) * kSuperBlock),
+                               sk * kSuperBlock, std::min(block_cols_, (sk + 1) * kSuperBlock)};
+      return range;
+    };
+    const auto [aj0, aj1, ak0, ak1] = blocks_of(aj, ak);
+    const auto [bj0, bj1, bk0, bk1] = blocks_of(bj, bk);
+    for (int j = aj0; j < aj1; ++j)
+      for (int k = ak0; k < ak1; ++k) {
+        const auto a = std::uint32_t(j * block_cols_ + k);
+        for (int jj = bj0; jj < bj1; ++jj)
+          for (int kk = bk0; kk < bk1; ++kk) {
+            const auto b = std::uint32_t(jj * block_cols_ + kk);
+            if (first == second && b < a) continue;
+            if ((low_[a].array() > high_[b].array()).any() ||
+                (low_[b].array() > high_[a].array()).any())
+              continue;
+            block_pairs_.push_back({std::min(a, b), std::max(a, b)});
+          }
+      }
   }
   std::sort(block_pairs_.begin(), block_pairs_.end());
   for (const auto& [first, second] : block_pairs_) {
     const std::size_t a = first, b = second;
     const int aj = int(a) / block_cols_, ak = int(a) % block_cols_;
     const int bj = int(b) / block_cols_, bk = int(b) % block_cols_;
-    if (std::abs(aj - bj) <= 1 && std::abs(ak - bk) <= 1) {
-      // One cone holds both blocks' normals: half-angle (theta + alpha_a + alpha_b) / 2.
-      const double between = std::acos(std::clamp(axis_[a].dot(axis_[b]), -1.0, 1.0));
-      const double half_angle = a == b ? spread_[a] : 0.5 * (between + spread_[a] + spread_[b]);
-      if (half_angle <= kFlatAngle && axis_[a].squaredNorm() > 0.0 && axis_[b].squaredNorm() > 0.0)
-        continue;
-    }
+    if (std::abs(aj - bj) <= 1 && std::abs(ak - bk) <= 1 &&
+        flat_together(axis_[a], spread_[a], axis_[b], spread_[b], a == b))
+      continue;
     test_nodes(aj, ak, bj, bk);
     if (a != b) test_nodes(bj, bk, aj, ak);
     test_edges(a, b);

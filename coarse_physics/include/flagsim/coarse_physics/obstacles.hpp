@@ -96,6 +96,9 @@ class Obstacles {
 
   Vec3 axis_point_m_ = Vec3::Zero();                 ///< on the pole's axis, at rest
   std::vector<std::array<std::uint32_t, 2>> links_;  ///< node pairs kept out of the pole
+  /// project_links' scratch: each node's side of the pole's square seen from
+  /// above (Cohen-Sutherland outcodes). One Obstacles serves one cloth.
+  mutable std::vector<std::uint8_t> outcodes_;
   PinMotion pins_{std::nullopt};
 };
 
