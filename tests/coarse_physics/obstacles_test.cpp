@@ -69,6 +69,35 @@ TEST(Obstacles, TheGroundStopsAFallAndFrictionSlowsTheSlide) {
   EXPECT_EQ(x[1], Vec3(1.0, 0.6, 0.0));
 }
 
+TEST(Obstacles, SettleRaisesAWrinkleUnderTheGroundAboveItWithItsLengths) {
+  // A cloth of 3 x 9 nodes lying on the ground (y = 0.5) in 0.1 m links, each
+  // row with a dip under it: node 4 of every row 50 mm down, its two links at
+  // 30 degrees, so every link is 0.1 m long as laid (what the infill gives).
+  auto solids = Obstacles::of(scene_with(std::nullopt, Ground{0.5, 0.25}));
+  const Lattice lattice = Lattice::rectangle(3, 9, 0.8, 0.2, Vec3::Zero());
+  const double c = 0.1 * std::cos(M_PI / 6.0), s = 0.1 * std::sin(M_PI / 6.0);
+  std::vector<Vec3> x(lattice.node_count());
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 9; ++k) {
+      const double along = k <= 3 ? 0.1 * k : 0.3 + (k == 4 ? c : 2.0 * c + 0.1 * (k - 5));
+      x[lattice.index(j, k)] = Vec3(along, k == 4 ? 0.5 - s : 0.5, 0.1 * j);
+    }
+  const std::vector<Vec3> laid = x;
+  EXPECT_EQ(solids->settle(0.0, lattice, x, {}, {}, 10, 2), 3);
+  // Mirrored: 50 mm above the ground, every other node where it was, and the
+  // fibers as long as laid (laid flat on the ground instead, the two links
+  // were 87 mm and the sweeps stretched the row along the ground).
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 9; ++k) {
+      const Vec3 expected = k == 4 ? Vec3(laid[lattice.index(j, k)].x(), 0.5 + s, 0.1 * j)
+                                   : laid[lattice.index(j, k)];
+      EXPECT_NEAR((x[lattice.index(j, k)] - expected).norm(), 0.0, 1e-12) << j << ", " << k;
+      if (k < 8) {
+        EXPECT_NEAR((x[lattice.index(j, k + 1)] - x[lattice.index(j, k)]).norm(), 0.1, 1e-12);
+      }
+    }
+}
+
 TEST(Obstacles, PinnedNodesAreLeftWhereTheyAre) {
   auto solids = Obstacles::of(scene_with(SolidPole{0.1, 0.3}, Ground{1.0, 0.5}));
   std::vector<Vec3> x = {Vec3(-0.1, 0.5, 0.0), Vec3(-0.1, 0.5, 0.0)};

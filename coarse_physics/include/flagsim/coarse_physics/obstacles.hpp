@@ -65,7 +65,9 @@ class Obstacles {
   bool self_contact() const { return self_.has_value(); }
 
   /// A lattice laid anew each frame (the infill's dense one), at time t, m:
-  /// projects its nodes not `fixed` out of the solids as project() does, then,
+  /// projects its nodes not `fixed` out of the solids as project() does (but
+  /// a node under the ground comes up mirrored above it, its depth as
+  /// height: the relief the infill gave it, not a fold in the floor), then,
   /// where any moved, lets the fibers around them take their rest lengths
   /// again while staying out (`rounds` Gauss-Seidel sweeps of the row and
   /// column links' lengths, each followed by the projection, over the box of
