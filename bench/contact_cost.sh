@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # What contact costs (issue 31): the default scene (FRAMES frames, default 150)
-# without and with a solid pole ([pole] radius = 0.04 m), and scenes/contact/
+# without and with a solid pole ([pole] radius = 0.04 m), and with the pole
+# and self-contact ([contact] thickness = 0.005 m), and scenes/contact/
 # pole_wrap in the full-lattice modes (mass-spring and XPBD at 17 x 25) without
 # and with self-contact ([contact] thickness = 0.005 m), each pair run
 # alternately ROUNDS times (default 3) so a drift of the machine hits both; the
@@ -23,6 +24,7 @@ wrap="$root/scenes/contact/pole_wrap.toml"
 for r in $(seq 1 "$rounds"); do
   run "default_r$r" --frames "$frames"
   run "pole_r$r" --frames "$frames" --set pole.radius=0.04
+  run "pole_self_r$r" --frames "$frames" --set pole.radius=0.04 --set contact.thickness=0.005
   for mode in mass-spring xpbd; do
     run "${mode}_r$r" "$wrap" --mode "$mode" --set "flag.fine=[17,25]"
     run "${mode}_self_r$r" "$wrap" --mode "$mode" --set "flag.fine=[17,25]" \
@@ -41,13 +43,15 @@ from stage_medians import show, stages as stages_of
 def stages(name):
     return stages_of(f"{out}/{name}.h5")
 runs = {}
-for config in ("default", "pole", "mass-spring", "mass-spring_self", "xpbd", "xpbd_self"):
+for config in ("default", "pole", "pole_self", "mass-spring", "mass-spring_self", "xpbd", "xpbd_self"):
     runs[config] = [stages(f"{config}_r{r}") for r in range(1, rounds + 1)]
     for r, row in enumerate(runs[config], 1):
         show(f"{config} {r}", row)
 whole = {c: float(np.median([row["whole"] for row in rows])) for c, rows in runs.items()}
 print(f"whole frame, median over rounds: default {whole['default']:.2f} ms, "
-      f"pole.radius = 0.04 {whole['pole']:.2f} ms, ratio {whole['pole'] / whole['default']:.2f}")
+      f"pole.radius = 0.04 {whole['pole']:.2f} ms, ratio {whole['pole'] / whole['default']:.2f}; "
+      f"with contact.thickness = 0.005 too {whole['pole_self']:.2f} ms, "
+      f"ratio {whole['pole_self'] / whole['default']:.2f}")
 for mode in ("mass-spring", "xpbd"):
     plain, self_contact = whole[mode], whole[f"{mode}_self"]
     print(f"pole_wrap, {mode} 17 x 25: {plain:.2f} ms, with [contact] {self_contact:.2f} ms, "

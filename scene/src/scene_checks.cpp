@@ -134,12 +134,6 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
         "[[keyframe]] drives the corners in infill mode only; set scene.mode = \"infill\"");
     scene.keyframes.clear();
   }
-  if (scene.mode == Mode::kHybrid && scene.contact &&
-      infill_solver_of(scene) == InfillSolverKind::kPaper)
-    fail_at(root, "contact",
-            "self-contact in hybrid mode needs the smooth infill, which follows the coarse "
-            "cloth's sharp folds (docs/methods.md); infill.solver = \"paper\" does not: leave "
-            "infill.solver out or set it to \"smooth\"");
   if (is_full_lattice(scene.mode) && scene.infill) {
     unused_table("infill",
                  "[infill] settings need a mode with the infill (\"hybrid\" or \"infill\")");

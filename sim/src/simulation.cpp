@@ -191,6 +191,7 @@ class DenseInfill {
              dense_self_contact(scene) ? infill::kContactFoldLimitRad : 0.0})),
         fps_(scene.fps),
         wrinkles_(scene.wrinkles.has_value()),
+        sides_from_last_frame_(infill_solver_of(scene) == InfillSolverKind::kPaper),
         obstacles_(physics::Obstacles::of(scene)),
         fixed_(model.lattice.node_count(), 0),
         mass_kg_(model.mass_kg),
@@ -207,13 +208,14 @@ class DenseInfill {
     const double thickness = scene.contact->thickness_m;
     self_.emplace(lattice_,
                   std::max(thickness, 0.25 * std::min(lattice_.spacing_x_m, lattice_.spacing_y_m)));
+    pushed_from_.resize(positions_.size());
+    if (sides_from_last_frame_) return;
     const infill::CellGrid& grid = solver_->grid();
     const double coarse_held =
         std::max(thickness, 0.25 * std::min(grid.col_stride * lattice_.spacing_x_m,
                                             grid.row_stride * lattice_.spacing_y_m));
     self_->set_side_reach(0.5 * coarse_held);
     surface_.resize(positions_.size());
-    pushed_from_.resize(positions_.size());
   }
 
  public:
@@ -258,7 +260,7 @@ class DenseInfill {
         obstacles_->settle(frame / fps_, lattice_, positions_, fixed_, previous_, kSettleRounds,
                            kSettleReach);
       });
-    if (self_) run_timed(times, contact_stage_, [&] { keep_layers_apart(coarse_m); });
+    if (self_) run_timed(times, contact_stage_, [&] { keep_layers_apart(coarse_m, frame / fps_); });
     for (std::size_t i = 0; i < positions_.size(); ++i)
       velocities_[i] = (positions_[i] - previous_[i]) * fps_;
   }
@@ -266,15 +268,21 @@ class DenseInfill {
   /// keeps its triangles apart, so its surface seen at dense resolution
   /// (CellGrid::coarse_surface) has no two layers crossing; every dense node
   /// and triangle, and every two dense edges, are kept the thickness apart on
-  /// the side they have on it (SelfContact, sides from that surface). Where
+  /// the side they have on it (SelfContact, sides from that surface). The
+  /// paper's infill deforms the last frame into the next rather than laying
+  /// the lattice anew, and does not follow the coarse cloth's sharp folds (its
+  /// layers can lie tens of millimetres off the coarse surface there): its
+  /// pairs keep the side they had in the last frame, as a physics step's do
+  /// (that frame came out of this pass with none crossing). Where
   /// the pass moved nodes, the fibers around them take back the lengths the
   /// infill gave them, each sweep followed by the pass again (as settle() does
   /// for the solids): a push spread along its fibers rather than into a few
   /// links' stretch.
-  void keep_layers_apart(std::span<const Vec3> coarse_m) {
-    solver_->grid().coarse_surface(lattice_, coarse_m, surface_);
+  void keep_layers_apart(std::span<const Vec3> coarse_m, double time_s) {
+    if (!sides_from_last_frame_) solver_->grid().coarse_surface(lattice_, coarse_m, surface_);
+    const std::span<const Vec3> sides = sides_from_last_frame_ ? previous_ : surface_;
     std::copy(positions_.begin(), positions_.end(), pushed_from_.begin());
-    if (self_->project(positions_, {}, fixed_, surface_) == 0) return;
+    if (self_->project(positions_, {}, fixed_, sides) == 0) return;
     const int J = lattice_.rows, K = lattice_.cols;
     int j0 = J, j1 = -1, k0 = K, k1 = -1;
     for (int j = 0; j < J; ++j)
@@ -310,8 +318,12 @@ class DenseInfill {
           if (j < jb) fiber(j, k, j + 1, k);
         }
       }
-      if (self_->project(positions_, {}, fixed_, surface_) == 0) break;
+      if (self_->project(positions_, {}, fixed_, sides) == 0) break;
     }
+    // Last, the solids again: the pass and the sweeps may have pushed a node a
+    // little into one (tens of micrometres into the pole on pole_wrap with
+    // the paper's infill), and no node may end inside a solid.
+    if (obstacles_) obstacles_->project(time_s, positions_, {}, fixed_, previous_);
   }
   void forget_velocities() { std::fill(velocities_.begin(), velocities_.end(), Vec3::Zero()); }
   /// The dense part of a SimulationState.
@@ -338,9 +350,12 @@ class DenseInfill {
   std::unique_ptr<infill::InfillMethod> solver_;
   double fps_;
   bool wrinkles_;
+  /// [contact]: the pairs keep the side they had in the last frame (the
+  /// paper's infill), else the one they have on the coarse surface.
+  bool sides_from_last_frame_;
   std::optional<physics::Obstacles> obstacles_;
   std::optional<physics::SelfContact> self_;  ///< hybrid [contact]: the dense lattice's
-  std::vector<Vec3> surface_;                 ///< [J*K] the coarse surface at each dense node, m
+  std::vector<Vec3> surface_;  ///< [J*K] the coarse surface at each dense node, m (smooth infill)
   std::vector<Vec3> pushed_from_;  ///< [J*K] the dense lattice before the self-contact pass, m
   int contact_stage_ = -1;
   /// [J*K] 1: a node the contact pass leaves where the infill put it: held by

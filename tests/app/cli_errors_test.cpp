@@ -136,10 +136,6 @@ const std::vector<BadInput>& cases() {
        "[[0,2,0],[1.5,2,0],[0,1,0],[1.5,1,0]]\n",
        {"run", "SCENE"},
        "bending: infill mode has no physics"},
-      {"self_contact_with_the_paper_infill",
-       with("[contact]\nthickness = 0.005\n[infill]\nsolver = \"paper\"\n"),
-       {"run", "SCENE", "--mode", "hybrid", "--set", "flag.coarse=[5,7]"},
-       "contact: self-contact in hybrid mode needs the smooth infill"},
       {"self_contact_in_infill_mode",
        "[scene]\nmode = \"infill\"\nduration = 0.1\n[flag]\nsize = [1.5, 1.0]\nfine = [9, 13]\n"
        "[contact]\n[[keyframe]]\ntime = 0.0\ncorners = "
