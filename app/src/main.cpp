@@ -262,6 +262,9 @@ int run_main(int argc, char** argv) {
                         "Coarse physics side by side: spring-damper,bullet,implicit,xpbd");
   sweep_cmd->add_option("--pole-radius", sweep.pole_radius,
                         "Solid pole radii side by side, m; 0: the scene's own pole, e.g. 0,0.04");
+  sweep_cmd->add_option("--contact-thickness", sweep.contact_thickness,
+                        "Self-contact thicknesses side by side, m; 0: the scene's own [contact], "
+                        "e.g. 0,0.005");
   sweep_cmd->add_option("--references", sweep.references,
                         "Full-lattice reference rows: mass-spring (default; every error is "
                         "against it), plus any of bullet,implicit,xpbd");

@@ -75,6 +75,7 @@ ReportRow describe(const Scene& scene, const RunRecord& run, const RunRecord& re
   ReportRow row;
   row.seed = scene.seed;
   if (scene.solid_pole) row.pole_radius_m = scene.solid_pole->radius_m;
+  if (scene.contact) row.contact_thickness_m = scene.contact->thickness_m;
   row.mode = to_string(scene.mode);
   row.backend = backend_name_of(scene);
   row.fine = lattice_text(run.lattice.rows, run.lattice.cols);
@@ -124,19 +125,20 @@ std::string csv_header() {
   return "point,label,mode,backend,fine,coarse,substeps,relax_iterations,frames,ms_per_frame,"
          "physics_ms,infill_ms,max_strain,p99_strain,short_horizon_rms_m,tracking_rms_m,flap_hz,"
          "flap_rel_error,mean_shape_rms_m,wrinkle_wavelength_m,status,infill_solver,best_reference,"
-         "speedup_vs_best_reference,seed,pole_radius_m";
+         "speedup_vs_best_reference,seed,pole_radius_m,contact_thickness_m";
 }
 
 std::string csv_line(const ReportRow& r) {
   return fmt::format(
       "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{},"
-      "{},{}",
+      "{},{},{}",
       r.point, r.label, r.mode, r.backend, r.fine, r.coarse, r.substeps, r.relax_iterations,
       r.frames, r.ms_per_frame, r.physics_ms, r.infill_ms, r.max_strain, r.p99_strain,
       optional_text(r.short_horizon_rms_m), optional_text(r.tracking_rms_m),
       optional_text(r.flap_hz), optional_text(r.flap_rel_error), optional_text(r.mean_shape_rms_m),
       optional_text(r.wrinkle_wavelength_m), to_string(r.status), r.infill_solver, r.best_reference,
-      optional_text(r.speedup_vs_best_reference), r.seed, optional_text(r.pole_radius_m));
+      optional_text(r.speedup_vs_best_reference), r.seed, optional_text(r.pole_radius_m),
+      optional_text(r.contact_thickness_m));
 }
 
 std::vector<std::string> csv_rows(const std::string& path) {
@@ -251,6 +253,7 @@ ReportRow parse_csv_line(const std::string& line) {
   if (errno == ERANGE)
     throw UserError(fmt::format("column 25 (seed) is {}, past 2^64", printable(seed, 40)));
   r.pole_radius_m = optional(25);
+  r.contact_thickness_m = optional(26);
   return r;
 }
 

@@ -32,6 +32,9 @@ struct ReportRow {
   std::uint64_t seed = 0;  ///< the run's scene.seed (sweep --seeds: one row per point and seed)
   /// [pole] radius, m, when the pole is a solid (sweep --pole-radius); empty otherwise.
   std::optional<double> pole_radius_m;
+  /// [contact] thickness, m, when the cloth keeps its layers apart (sweep
+  /// --contact-thickness); empty otherwise.
+  std::optional<double> contact_thickness_m;
 };
 
 /// Where the metrics look: the short horizon (first `horizon_s`), and the

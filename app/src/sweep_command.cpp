@@ -262,6 +262,7 @@ std::vector<std::string> point_command(const SweepOptions& o) {
   add("--infill", o.infill);
   add("--backend", o.backend);
   add("--pole-radius", o.pole_radius);
+  add("--contact-thickness", o.contact_thickness);
   if (o.frames) add("--frames", std::to_string(*o.frames));
   if (o.seeds > 1) add("--seeds", std::to_string(o.seeds));
   add("--horizon", fmt::format("{}", o.horizon_s));

@@ -14,6 +14,9 @@ struct SweepOptions {
   /// Comma-separated solid pole radii, m ([pole] radius); 0: the scene's own
   /// pole (contact on and off side by side: --pole-radius 0,0.04).
   std::string pole_radius;
+  /// Comma-separated self-contact thicknesses, m ([contact] thickness); 0:
+  /// the scene's own (self-contact on and off: --contact-thickness 0,0.005).
+  std::string contact_thickness;
   /// Full-lattice modes run as reference rows, mass-spring among them (the
   /// errors are against it).
   std::string references = "mass-spring";

@@ -58,18 +58,29 @@ std::string parse_name(const std::string& flag, const std::string& item, std::st
 
 // A radius in m from 0 to 1, as the TOML float --set takes ("0.04"), or ""
 // for 0 (the scene's own pole).
-std::string parse_radius(const std::string& flag, const std::string& item) {
+// A length from 0 to 1 m as a TOML float (the key's text), "" for 0 (the
+// scene's own setting); else the error names the flag and what it `expects`.
+std::string parse_metres(const std::string& flag, const std::string& item, const char* expects) {
   static const std::regex pattern(R"(^\s*(\d{1,3}(\.\d{1,9})?|\.\d{1,9})\s*$)");
   std::smatch m;
   if (!std::regex_match(item, m, pattern) || std::stod(m[1]) > 1.0)
-    throw UserError(fmt::format(
-        "{} {}: expected pole radii in m from 0 (the scene's own pole) to 1, e.g. 0,0.04", flag,
-        item));
+    throw UserError(fmt::format("{} {}: expected {}", flag, item, expects));
   if (std::stod(m[1]) == 0.0) return "";
   std::string number = m[1];
   if (number.front() == '.') number = fmt::format("0{}", number);
   if (number.find('.') == std::string::npos) number += ".0";  // a TOML float, as the key reads
   return number;
+}
+
+std::string parse_radius(const std::string& flag, const std::string& item) {
+  return parse_metres(flag, item,
+                      "pole radii in m from 0 (the scene's own pole) to 1, e.g. 0,0.04");
+}
+
+std::string parse_thickness(const std::string& flag, const std::string& item) {
+  return parse_metres(flag, item,
+                      "self-contact thicknesses in m from 0 (the scene's own [contact]) to 1, "
+                      "e.g. 0,0.005");
 }
 
 std::string parse_infill_solver(const std::string& flag, const std::string& item) {
@@ -123,28 +134,37 @@ std::vector<SweepPoint> sweep_grid(const SweepOptions& o) {
   const auto radii = o.pole_radius.empty()
                          ? std::vector<std::string>{""}
                          : parse_list<std::string>("--pole-radius", o.pole_radius, parse_radius);
+  // Empty: the scene's own [contact].
+  const auto thicknesses =
+      o.contact_thickness.empty()
+          ? std::vector<std::string>{""}
+          : parse_list<std::string>("--contact-thickness", o.contact_thickness, parse_thickness);
   for (const auto& [jc, kc] : coarse)
     for (const std::string& backend : backends)
       for (const std::string& radius : radii)
-        for (int s : substeps)
-          for (const std::string& solver : infill)
-            // The relaxation cap is the paper solver's; the smooth one gets one point.
-            for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
-              SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
-                           {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
-              const auto add = [&p](std::string set, const std::string& label) {
-                p.sets.push_back(std::move(set));
-                p.label += " " + label;
-              };
-              if (!backend.empty()) add(fmt::format("solver.backend=\"{}\"", backend), backend);
-              if (!radius.empty())
-                add(fmt::format("pole.radius={}", radius), fmt::format("pole {} m", radius));
-              if (s > 0) add(fmt::format("solver.substeps={}", s), fmt::format("substeps {}", s));
-              if (!solver.empty()) add(fmt::format("infill.solver=\"{}\"", solver), solver);
-              if (r > 0)
-                add(fmt::format("infill.relax_iterations={}", r), fmt::format("relax {}", r));
-              points.push_back(p);
-            }
+        for (const std::string& thickness : thicknesses)
+          for (int s : substeps)
+            for (const std::string& solver : infill)
+              // The relaxation cap is the paper solver's; the smooth one gets one point.
+              for (int r : (solver == "smooth" ? std::vector<int>{0} : relax)) {
+                SweepPoint p{fmt::format("hybrid {}x{}", jc, kc),
+                             {"scene.mode=\"hybrid\"", fmt::format("flag.coarse=[{},{}]", jc, kc)}};
+                const auto add = [&p](std::string set, const std::string& label) {
+                  p.sets.push_back(std::move(set));
+                  p.label += " " + label;
+                };
+                if (!backend.empty()) add(fmt::format("solver.backend=\"{}\"", backend), backend);
+                if (!radius.empty())
+                  add(fmt::format("pole.radius={}", radius), fmt::format("pole {} m", radius));
+                if (!thickness.empty())
+                  add(fmt::format("contact.thickness={}", thickness),
+                      fmt::format("contact {} m", thickness));
+                if (s > 0) add(fmt::format("solver.substeps={}", s), fmt::format("substeps {}", s));
+                if (!solver.empty()) add(fmt::format("infill.solver=\"{}\"", solver), solver);
+                if (r > 0)
+                  add(fmt::format("infill.relax_iterations={}", r), fmt::format("relax {}", r));
+                points.push_back(p);
+              }
   return points;
 }
 

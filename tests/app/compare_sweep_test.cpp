@@ -1,6 +1,7 @@
 // `flag-sim compare` and `flag-sim sweep` end to end, on a small lattice.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -426,23 +427,33 @@ TEST(Sweep, SlurmScriptsRunAsTheSweep) {
   EXPECT_FALSE(fs::exists(dir.file("j2")));
 }
 
-TEST(Sweep, PoleRadiiSideBySideWithTheRadiusInItsColumn) {
-  // --pole-radius 0,0.04: the scene's own pole (here none: a line) and a solid of 4 cm; the
-  // column says which row is which, empty where the pole is not a solid.
+TEST(Sweep, PoleRadiiAndContactThicknessesSideBySideEachInItsColumn) {
+  // --pole-radius 0,0.04: the scene's own pole (here none: a line) and a solid of 4 cm;
+  // --contact-thickness 0,0.005: the scene's own [contact] (here none) and 5 mm. The columns
+  // say which row is which, empty where the pole is not a solid or there is no self-contact.
   TempDir dir;
-  std::vector<std::string> args = {"sweep",  "--coarse", "9x13",  "--pole-radius",
-                                   "0,0.04", "-o",       "p.csv", "--quiet"};
+  std::vector<std::string> args = {
+      "sweep",   "--coarse", "9x13",  "--pole-radius", "0,0.04", "--contact-thickness",
+      "0,0.005", "-o",       "p.csv", "--quiet"};
   args.insert(args.end(), kSmall.begin(), kSmall.end());
   const ProcessResult result = run_flag_sim(args, dir.path());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const auto csv = read_csv(dir.file("p.csv"));
-  ASSERT_EQ(csv.size(), 4u);  // header, the reference, the two points
+  ASSERT_EQ(csv.size(), 6u);  // header, the reference, the four points
   const std::size_t radius = column(csv, "pole_radius_m");
-  EXPECT_EQ(csv[1][radius], "");  // the reference runs the scene as it is
-  EXPECT_EQ(csv[2][radius], "");
-  EXPECT_EQ(csv[3][radius], "0.04");
-  EXPECT_NE(csv[3][column(csv, "label")].find("pole 0.04 m"), std::string::npos);
-  for (std::size_t row = 1; row < 4; ++row) EXPECT_EQ(csv[row][column(csv, "status")], "complete");
+  const std::size_t thickness = column(csv, "contact_thickness_m");
+  const std::size_t label = column(csv, "label");
+  // The reference runs the scene as it is; then radius by thickness.
+  const std::vector<std::array<std::string, 2>> expected = {
+      {"", ""}, {"", ""}, {"", "0.005"}, {"0.04", ""}, {"0.04", "0.005"}};
+  for (std::size_t row = 1; row < 6; ++row) {
+    SCOPED_TRACE(csv[row][label]);
+    EXPECT_EQ(csv[row][radius], expected[row - 1][0]);
+    EXPECT_EQ(csv[row][thickness], expected[row - 1][1]);
+    EXPECT_EQ(csv[row][column(csv, "status")], "complete");
+  }
+  EXPECT_NE(csv[3][label].find("contact 0.005 m"), std::string::npos);
+  EXPECT_NE(csv[5][label].find("pole 0.04 m contact 0.005 m"), std::string::npos);
 }
 
 TEST(Sweep, BackendsSideBySide) {

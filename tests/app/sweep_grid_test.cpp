@@ -88,6 +88,29 @@ TEST(SweepGrid, PoleRadiiCrossTheHybridPointsAndZeroKeepsTheScenesPole) {
   }
 }
 
+// Self-contact on and off side by side. 0 leaves the scene's own [contact].
+TEST(SweepGrid, ContactThicknessesCrossTheHybridPointsAndZeroKeepsTheScenesOwn) {
+  SweepOptions o = lists("9x13", "", "", "", "");
+  o.contact_thickness = "0,.005";
+  const std::vector<SweepPoint> grid = sweep_grid(o);
+  ASSERT_EQ(grid.size(), 3u);
+  EXPECT_EQ(grid[1].label, "hybrid 9x13");
+  EXPECT_EQ(grid[2].label, "hybrid 9x13 contact 0.005 m");
+  EXPECT_EQ(grid[2].sets.back(), "contact.thickness=0.005");
+  for (const char* bad : {"-0.005", "5mm", "0.005,", "1.5"}) {
+    o.contact_thickness = bad;
+    try {
+      sweep_grid(o);
+      ADD_FAILURE() << bad << ": accepted";
+    } catch (const UserError& e) {
+      EXPECT_NE(std::string(e.what()).find("--contact-thickness"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("expected self-contact thicknesses in m"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(SweepGrid, AnItemItCannotReadIsNamedWithItsFlag) {
   const auto message = [](const SweepOptions& o) {
     try {
