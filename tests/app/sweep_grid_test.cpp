@@ -61,6 +61,19 @@ TEST(SweepGrid, TheRelaxationCapMultipliesOnlyThePaperSolversPoints) {
   EXPECT_EQ(grid.back().sets.back(), "infill.relax_iterations=8000");
 }
 
+// sweep_grid(o) refuses `bad` (one list's text) with a message naming `flag`
+// and saying what it `expected`.
+void expect_refused(const SweepOptions& o, const std::string& bad, const std::string& flag,
+                    const std::string& expected) {
+  try {
+    sweep_grid(o);
+    ADD_FAILURE() << bad << ": accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find(flag), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+  }
+}
+
 // Issue 31: contact on and off side by side. 0 leaves the scene's own pole.
 TEST(SweepGrid, PoleRadiiCrossTheHybridPointsAndZeroKeepsTheScenesPole) {
   SweepOptions o = lists("9x13", "", "", "", "spring-damper,implicit");
@@ -77,14 +90,7 @@ TEST(SweepGrid, PoleRadiiCrossTheHybridPointsAndZeroKeepsTheScenesPole) {
                                       "solver.backend=\"spring-damper\"", "pole.radius=0.04"}));
   for (const char* bad : {"0.04,-1", "2", "0.04,", "4cm"}) {
     o.pole_radius = bad;
-    try {
-      sweep_grid(o);
-      ADD_FAILURE() << bad << ": accepted";
-    } catch (const UserError& e) {
-      EXPECT_NE(std::string(e.what()).find("--pole-radius"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("expected pole radii in m"), std::string::npos)
-          << e.what();
-    }
+    expect_refused(o, bad, "--pole-radius", "expected pole radii in m");
   }
 }
 
@@ -99,15 +105,7 @@ TEST(SweepGrid, ContactThicknessesCrossTheHybridPointsAndZeroKeepsTheScenesOwn) 
   EXPECT_EQ(grid[2].sets.back(), "contact.thickness=0.005");
   for (const char* bad : {"-0.005", "5mm", "0.005,", "1.5"}) {
     o.contact_thickness = bad;
-    try {
-      sweep_grid(o);
-      ADD_FAILURE() << bad << ": accepted";
-    } catch (const UserError& e) {
-      EXPECT_NE(std::string(e.what()).find("--contact-thickness"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("expected self-contact thicknesses in m"),
-                std::string::npos)
-          << e.what();
-    }
+    expect_refused(o, bad, "--contact-thickness", "expected self-contact thicknesses in m");
   }
 }
 
