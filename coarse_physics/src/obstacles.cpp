@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "flagsim/coarse_physics/fiber_settle.hpp"
+
 namespace flagsim::physics {
 namespace {
 
@@ -205,53 +207,23 @@ int Obstacles::settle(double time_s, const Lattice& lattice, std::span<Vec3> x_m
   }
   const int moved = project_solids(time_s, x_m, {}, fixed, came_from_m) + mirrored;
   if (moved == 0 || rounds <= 0) return moved;
-  int j0 = lattice.rows, j1 = -1, k0 = lattice.cols, k1 = -1;
-  for (int j = 0; j < lattice.rows; ++j) {
-    for (int k = 0; k < lattice.cols; ++k) {
-      const std::size_t i = lattice.index(j, k);
-      if (x_m[i] == before[i]) continue;
-      j0 = std::min(j0, j), j1 = std::max(j1, j), k0 = std::min(k0, k), k1 = std::max(k1, k);
-    }
-  }
-  j0 = std::max(0, j0 - reach), j1 = std::min(lattice.rows - 1, j1 + reach);
-  k0 = std::max(0, k0 - reach), k1 = std::min(lattice.cols - 1, k1 + reach);
-  // Inverse masses, relative: the box's free nodes 1, the rest 0.
-  const auto w = [&](int j, int k) {
-    if (j < j0 || j > j1 || k < k0 || k > k1) return 0.0;
-    return fixed.empty() || !fixed[lattice.index(j, k)] ? 1.0 : 0.0;
-  };
-  const auto fiber = [&](int ja, int ka, int jb, int kb, double rest) {
-    const double wa = w(ja, ka), wb = w(jb, kb);
-    if (wa + wb == 0.0) return;
-    Vec3& a = x_m[lattice.index(ja, ka)];
-    Vec3& b = x_m[lattice.index(jb, kb)];
-    const Vec3 d = b - a;
-    const double length = d.norm();
-    if (length == 0.0) return;
-    const Vec3 correction = (length - rest) / ((wa + wb) * length) * d;
-    a += wa * correction;
-    b -= wb * correction;
-  };
-  // The box and one link around it (links from a fixed node into the box).
-  const int ja = std::max(0, j0 - 1), jb = std::min(lattice.rows - 1, j1 + 1);
-  const int ka = std::max(0, k0 - 1), kb = std::min(lattice.cols - 1, k1 + 1);
   // The projection after each sweep, over the box's rows only (nodes outside
   // it do not move in a sweep): over the whole lattice it was most of the
   // pass's time when the box is a strip along the pole.
-  const auto row_part = [&](auto span, int j) {
-    return span.empty() ? span
-                        : span.subspan(lattice.index(j, ka), std::size_t(kb) - std::size_t(ka) + 1);
-  };
-  for (int round = 0; round < rounds; ++round) {
-    for (int j = ja; j <= jb; ++j) {
-      for (int k = ka; k <= kb; ++k) {
-        if (k < kb) fiber(j, k, j, k + 1, lattice.spacing_x_m);
-        if (j < jb) fiber(j, k, j + 1, k, lattice.spacing_y_m);
-      }
-    }
-    for (int j = ja; j <= jb; ++j)
-      project_solids(time_s, row_part(x_m, j), {}, row_part(fixed, j), row_part(came_from_m, j));
-  }
+  settle_fibers(
+      lattice, x_m, before, fixed, rounds, reach,
+      [](std::size_t, std::size_t, double rest_m) { return rest_m; },
+      [&](int ja, int jb, int ka, int kb) {
+        const auto row_part = [&](auto span, int j) {
+          return span.empty()
+                     ? span
+                     : span.subspan(lattice.index(j, ka), std::size_t(kb) - std::size_t(ka) + 1);
+        };
+        for (int j = ja; j <= jb; ++j)
+          project_solids(time_s, row_part(x_m, j), {}, row_part(fixed, j),
+                         row_part(came_from_m, j));
+        return true;
+      });
   return moved;
 }
 

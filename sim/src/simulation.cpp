@@ -10,6 +10,7 @@
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/creased_bending.hpp"
+#include "flagsim/coarse_physics/fiber_settle.hpp"
 #include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/core/errors.hpp"
 #include "flagsim/core/message.hpp"
@@ -283,43 +284,12 @@ class DenseInfill {
     const std::span<const Vec3> sides = sides_from_last_frame_ ? previous_ : surface_;
     std::copy(positions_.begin(), positions_.end(), pushed_from_.begin());
     if (self_->project(positions_, {}, fixed_, sides) == 0) return;
-    const int J = lattice_.rows, K = lattice_.cols;
-    int j0 = J, j1 = -1, k0 = K, k1 = -1;
-    for (int j = 0; j < J; ++j)
-      for (int k = 0; k < K; ++k)
-        if (positions_[lattice_.index(j, k)] != pushed_from_[lattice_.index(j, k)])
-          j0 = std::min(j0, j), j1 = std::max(j1, j), k0 = std::min(k0, k), k1 = std::max(k1, k);
-    j0 = std::max(0, j0 - kSettleReach), j1 = std::min(J - 1, j1 + kSettleReach);
-    k0 = std::max(0, k0 - kSettleReach), k1 = std::min(K - 1, k1 + kSettleReach);
-    // Inverse masses, relative: the box's free nodes 1, the rest 0.
-    const auto w = [&](int j, int k) {
-      if (j < j0 || j > j1 || k < k0 || k > k1) return 0.0;
-      return fixed_[lattice_.index(j, k)] ? 0.0 : 1.0;
-    };
-    const auto fiber = [&](int ja, int ka, int jb, int kb) {
-      const double wa = w(ja, ka), wb = w(jb, kb);
-      if (wa + wb == 0.0) return;
-      const std::size_t a = lattice_.index(ja, ka), b = lattice_.index(jb, kb);
-      const double target = (pushed_from_[b] - pushed_from_[a]).norm();
-      const Vec3 d = positions_[b] - positions_[a];
-      const double length = d.norm();
-      if (length == 0.0) return;
-      const Vec3 correction = (length - target) / ((wa + wb) * length) * d;
-      positions_[a] += wa * correction;
-      positions_[b] -= wb * correction;
-    };
-    // The box and one link around it (links from a node outside into the box).
-    const int ja = std::max(0, j0 - 1), jb = std::min(J - 1, j1 + 1);
-    const int ka = std::max(0, k0 - 1), kb = std::min(K - 1, k1 + 1);
-    for (int round = 0; round < kSettleRounds; ++round) {
-      for (int j = ja; j <= jb; ++j) {
-        for (int k = ka; k <= kb; ++k) {
-          if (k < kb) fiber(j, k, j, k + 1);
-          if (j < jb) fiber(j, k, j + 1, k);
-        }
-      }
-      if (self_->project(positions_, {}, fixed_, sides) == 0) break;
-    }
+    physics::settle_fibers(
+        lattice_, positions_, pushed_from_, fixed_, kSettleRounds, kSettleReach,
+        [&](std::size_t a, std::size_t b, double) {
+          return (pushed_from_[b] - pushed_from_[a]).norm();
+        },
+        [&](int, int, int, int) { return self_->project(positions_, {}, fixed_, sides) != 0; });
     // Last, the solids again: the pass and the sweeps may have pushed a node a
     // little into one (tens of micrometres into the pole on pole_wrap with
     // the paper's infill), and no node may end inside a solid.
