@@ -33,6 +33,27 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene, std::shared_ptr<const
     stable_substep_s_ = std::min(stable_substep_s_, 1.0 / vortex_->velocity_rate_bound());
   substeps_per_frame_ =
       physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
+
+  // Held forces (see the header): the hold within wind_hold / the slow terms'
+  // rate bound. Not with the vortex lattice, whose air inertia is solved with
+  // every substep's forces.
+  double slow_rate = 0.0;
+  for (std::size_t t = 0; t < terms_.size(); ++t) {
+    const ForceTiming timing = terms_[t]->timing();
+    if (timing == ForceTiming::kEverySubstep) continue;
+    held_terms_.push_back(t);
+    if (timing == ForceTiming::kSlow)
+      slow_rate = std::max(slow_rate, terms_[t]->velocity_rate_bound());
+  }
+  // Without a slow term nothing is held (gravity alone is cheap, and such a
+  // scene keeps its bits from before holds).
+  if (slow_rate > 0.0) {
+    const double hold_s = scene.solver.wind_hold / slow_rate;
+    hold_substeps_ =
+        int(std::clamp(std::floor(hold_s / substep_s() + 1e-9), 1.0, double(substeps_per_frame_)));
+  }
+  if (vortex_) hold_substeps_ = 1;
+  held_n_.assign(model_->lattice.node_count(), Vec3::Zero());
 }
 
 void SpringDamperSolver::register_stages(StageTimes& times) {
@@ -43,6 +64,7 @@ void SpringDamperSolver::register_stages(StageTimes& times) {
 
 void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
   if (vortex_) vortex_->begin_frame(state.time_s, state.x_m);
+  substep_ = 0;
   advance_substeps(terms_, state, substeps_per_frame_, substep_s(), [&](double dt) {
     step(state, dt, times);
     return true;
@@ -52,11 +74,24 @@ void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
 void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times) {
   // The stages run back to back: one clock read between two.
   StageLaps laps(times);
-  std::fill(forces_n_.begin(), forces_n_.end(), Vec3::Zero());
-  for (std::size_t t = 0; t < terms_.size(); ++t) {
-    const int stage = term_stage_.empty() ? -1 : term_stage_[t];
-    laps.run(stage, [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
+  const auto stage_of = [&](std::size_t t) { return term_stage_.empty() ? -1 : term_stage_[t]; };
+  if (hold_substeps_ == 1) {  // nothing held: every term in pipeline order, as before holds
+    std::fill(forces_n_.begin(), forces_n_.end(), Vec3::Zero());
+    for (std::size_t t = 0; t < terms_.size(); ++t)
+      laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
+  } else {
+    // The held terms' sum at the hold's first substep, then the others on top.
+    if (substep_ % hold_substeps_ == 0) {
+      std::fill(held_n_.begin(), held_n_.end(), Vec3::Zero());
+      for (const std::size_t t : held_terms_)
+        laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, held_n_); });
+    }
+    std::copy(held_n_.begin(), held_n_.end(), forces_n_.begin());
+    for (std::size_t t = 0; t < terms_.size(); ++t)
+      if (terms_[t]->timing() == ForceTiming::kEverySubstep)
+        laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
   }
+  ++substep_;
   if (vortex_) {
     laps.run(vortex_stage_, [&] {
       vortex_->advance_to(state.time_s);

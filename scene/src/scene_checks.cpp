@@ -168,6 +168,14 @@ void check_consistency(Scene& scene, const TableReader& root, const TableReader&
                                    "\"implicit\" or scene.mode = \"implicit\"",
                                    to_string(*backend), lacks, key));
   }
+  // Only the spring-damper steps the wind with a hold (spring_damper.hpp).
+  if (const std::optional<Backend> backend = backend_of(scene);
+      backend && *backend != Backend::kSpringDamper && root.table().at_path("solver.wind_hold"))
+    unused_setting("solver.wind_hold", "solver.wind_hold",
+                   fmt::format("the {} backend evaluates the wind at every step; "
+                               "solver.wind_hold applies to the spring-damper "
+                               "(scene.mode = \"mass-spring\", or the hybrid's default backend)",
+                               to_string(*backend)));
   // The direct solve probes the step's matrix over 2-link neighbourhoods
   // (implicit_euler.cpp); the wind on panels coarser than the cloth couples
   // nodes a panel or more apart, so its matrix would be wrong (issue 35).

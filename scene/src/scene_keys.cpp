@@ -122,6 +122,9 @@ constexpr KeyMeaning kMeanings[] = {
     {"solver.linear", "implicit backend only: cg or cholesky"},
     {"solver.max_step_strain_change",
      "implicit backend only: a step changing a link's strain by more is taken as two halves"},
+    {"solver.wind_hold",
+     "spring-damper only: the wind's force is held over substeps for at most this fraction of its "
+     "fastest velocity response (absent: 0.1); 0: evaluated every substep"},
     {"output.file", "output file; absent: out/<scene.name>.h5 (run -o wins)"},
     {"output.every", "keep every n-th simulated frame"},
     {"output.flush_every", "frames written between flushes to disk"},
@@ -173,6 +176,10 @@ bool default_printable(const Scene& scene, const std::string& key) {
                         (scene.mode == Mode::kHybrid && scene.solver.backend == Backend::kImplicit);
   if (key == "solver.linear" || key == "solver.max_step_strain_change") return implicit;
   if (key == "solver.backend") return scene.mode == Mode::kHybrid;
+  if (key == "solver.wind_hold")
+    return scene.wind &&
+           (scene.mode == Mode::kMassSpring ||
+            (scene.mode == Mode::kHybrid && scene.solver.backend == Backend::kSpringDamper));
   return true;
 }
 

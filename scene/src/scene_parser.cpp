@@ -93,6 +93,7 @@ constexpr std::string_view kAllKeys[] = {"scene.name",
                                          "solver.iterations",
                                          "solver.linear",
                                          "solver.max_step_strain_change",
+                                         "solver.wind_hold",
                                          "keyframe.time",
                                          "keyframe.corners",
                                          "output.file",
@@ -515,6 +516,8 @@ void read_run_tables(TableReader& root, Scene& scene) {
     scene.solver.linear = in.choice_of("linear", scene.solver.linear, kLinearSolverNames);
     scene.solver.max_step_strain_change = in.real(
         "max_step_strain_change", scene.solver.max_step_strain_change, Bound{0.0, 10.0, true}, "");
+    scene.solver.wind_hold = in.real("wind_hold", scene.solver.wind_hold, Bound::between(0.0, 0.5),
+                                     "fraction of the wind's response time");
     in.finish(kAllKeys);
   }
   {

@@ -186,6 +186,22 @@ TEST(SceneParser, StepStrainChangeOnlyWithTheImplicitBackendAndPositive) {
   EXPECT_NE(zero.find("s.toml:8:26: solver.max_step_strain_change:"), std::string::npos) << zero;
 }
 
+TEST(SceneParser, WindHoldOnlyWithTheSpringDamperAndWithinItsRange) {
+  EXPECT_EQ(parse_scene(kMinimal, "s.toml").solver.wind_hold, 0.1);
+  EXPECT_EQ(
+      parse_scene(std::string(kMinimal) + "[solver]\nwind_hold = 0\n", "s.toml").solver.wind_hold,
+      0.0);
+  const std::string large = error_of(std::string(kMinimal) + "[solver]\nwind_hold = 0.6\n");
+  EXPECT_NE(large.find("s.toml:8:13: solver.wind_hold:"), std::string::npos) << large;
+  std::string xpbd_scene = kMinimal;
+  xpbd_scene.replace(xpbd_scene.find("mass-spring"), 11, "xpbd");
+  const std::string message = error_of(xpbd_scene + "[solver]\nwind_hold = 0.05\n");
+  EXPECT_NE(message.find("s.toml:8:13: solver.wind_hold: the xpbd backend evaluates the wind at "
+                         "every step"),
+            std::string::npos)
+      << message;
+}
+
 TEST(SceneParser, CoarseMustDivideFineAndSaysWhatWould) {
   const std::string message = error_of(std::string(kMinimal) + "coarse = [4, 5]\n");
   EXPECT_NE(message.find("s.toml:7:10: flag.coarse"), std::string::npos) << message;

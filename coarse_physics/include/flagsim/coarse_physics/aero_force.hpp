@@ -77,6 +77,9 @@ class AeroForce final : public ForceTerm {
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                   std::span<Vec3> forces_n) const override;
   double velocity_rate_bound() const override;
+  /// The force on the panels changes as they move, on the flap's time scale
+  /// (tenths of a second), not the springs' (tenths of a millisecond).
+  ForceTiming timing() const override { return ForceTiming::kSlow; }
   const WindField* wind_field() const override { return &field_; }
   bool set_wind_drift(const WindField::Drift& drift, double time_s,
                       std::span<const Vec3> x_m) override;

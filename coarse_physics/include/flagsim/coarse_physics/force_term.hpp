@@ -31,6 +31,15 @@ enum class Definiteness {
                ///< unchanged and only its convergence rate is
 };
 
+/// How often a stepper must evaluate a term's force (SpringDamperSolver
+/// evaluates the last two once per hold of several substeps).
+enum class ForceTiming {
+  kEverySubstep,  ///< stiff in x or v (springs, bending): every substep
+  kConstant,      ///< never changes (gravity): once per hold, exactly
+  kSlow,          ///< changes on the flap's time scale (the wind on its panels): may be
+                  ///< held while velocity_rate_bound() x the hold stays small
+};
+
 class ForceTerm {
  public:
   virtual ~ForceTerm() = default;
@@ -51,6 +60,8 @@ class ForceTerm {
   virtual void add_stiffness_bound(std::span<double> /*row_sum_n_m*/) const {}
   /// Upper bound of ||d f_i / d v_i|| / m_i over the nodes, 1/s.
   virtual double velocity_rate_bound() const { return 0.0; }
+  /// Whether a stepper may hold this term's force over several substeps.
+  virtual ForceTiming timing() const { return ForceTiming::kEverySubstep; }
   /// The wind's term: its mean wind and the turbulence's drift (wind_field.hpp);
   /// nullptr for every other term.
   virtual const WindField* wind_field() const { return nullptr; }

@@ -16,6 +16,7 @@ class GravityForce final : public ForceTerm {
   void add_forces(std::span<const Vec3> x_m, std::span<const Vec3> v_m_s,
                   std::span<Vec3> forces_n) const override;
   double energy(std::span<const Vec3> x_m) const override;
+  ForceTiming timing() const override { return ForceTiming::kConstant; }
 
  private:
   const std::vector<double>& mass_kg_;
