@@ -200,11 +200,7 @@ TEST_P(SelfContactScene, TheClothNeverCrossesItself) {
   EXPECT_GE(with.closest_m, 0.999 * with.held_m) << with.closest_m;
   if (c.crosses_without) {  // the scene asks something of the contact
     const Crossings without = run_pole_wrap(c, false);
-    // Without it the layers cross, or come within half the thickness of each
-    // other (mass-spring, 2026-12-07: 0 frames crossing with the wind held
-    // over 4 substeps, 1.4 mm closest every substep, against 15.6 mm held).
-    EXPECT_TRUE(without.frames > 0 || without.closest_m < 0.5 * without.held_m)
-        << without.frames << " frames crossing, closest " << without.closest_m << " m";
+    EXPECT_GT(without.frames, 0);
   }
 }
 
@@ -231,11 +227,10 @@ class HybridSelfContact : public ::testing::TestWithParam<HybridContactRun> {};
 
 struct DenseFrames {
   int frame_count = 0;
-  int crossing = 0;                      ///< frames with two crossing triangles
-  double max_strain = 0.0;               ///< over every row and column link of every frame
-  std::vector<double> frame_max_strain;  ///< each frame's largest
-  double in_pole_m = -1.0;               ///< the deepest a dense node went into the pole, m
-  double below_ground_m = -1.0;          ///< the deepest a dense node went under the ground, m
+  int crossing = 0;              ///< frames with two crossing triangles
+  double max_strain = 0.0;       ///< over every row and column link of every frame
+  double in_pole_m = -1.0;       ///< the deepest a dense node went into the pole, m
+  double below_ground_m = -1.0;  ///< the deepest a dense node went under the ground, m
 };
 
 DenseFrames run_hybrid(const std::string& scene, bool contact,
@@ -256,20 +251,19 @@ DenseFrames run_hybrid(const std::string& scene, bool contact,
     if (!flagsim::testing::self_intersections(lattice, x, 1).empty()) ++out.crossing;
     out.in_pole_m = std::max(out.in_pole_m, deepest_in_pole(x, pole_radius(scene)));
     out.below_ground_m = std::max(out.below_ground_m, deepest_below_ground(x));
-    double worst = 0.0;
     for (int j = 0; j < lattice.rows; ++j) {
       for (int k = 0; k < lattice.cols; ++k) {
         const Vec3& p = x[lattice.index(j, k)];
         if (k + 1 < lattice.cols)
-          worst = std::max(
-              worst, std::abs((x[lattice.index(j, k + 1)] - p).norm() / lattice.spacing_x_m - 1.0));
+          out.max_strain = std::max(
+              out.max_strain,
+              std::abs((x[lattice.index(j, k + 1)] - p).norm() / lattice.spacing_x_m - 1.0));
         if (j + 1 < lattice.rows)
-          worst = std::max(
-              worst, std::abs((x[lattice.index(j + 1, k)] - p).norm() / lattice.spacing_y_m - 1.0));
+          out.max_strain = std::max(
+              out.max_strain,
+              std::abs((x[lattice.index(j + 1, k)] - p).norm() / lattice.spacing_y_m - 1.0));
       }
     }
-    out.frame_max_strain.push_back(worst);
-    out.max_strain = std::max(out.max_strain, worst);
   }
   return out;
 }
@@ -315,7 +309,7 @@ TEST(HybridSelfContactPaperInfill, TheDenseClothNeverCrossesItself) {
 // the scene. The flag is pushed past its pole and wraps around it, then
 // unwraps and flies out; no dense node enters the pole, and the dense cloth
 // never crosses itself where it wraps (measured 2026-12-07: the fly end at x
-// = -1.35 m at t = 1 s, +1.15 m at most from t = 4 s; no crossing in 181 frames).
+// = -1.28 m at t = 1 s, +1.37 m at t = 5 s; no crossing in 181 frames).
 TEST(PoleTurn, TheFlagWrapsAroundItsPoleAndUnwrapsWhenTheWindTurnsBack) {
   TempDir dir;
   const ProcessResult result = run_flag_sim(
@@ -337,11 +331,8 @@ TEST(PoleTurn, TheFlagWrapsAroundItsPoleAndUnwrapsWhenTheWindTurnsBack) {
     if (t >= 120) unwrapped_x = std::max(unwrapped_x, x[fly_end].x());
   }
   EXPECT_EQ(crossing, 0);
-  EXPECT_LT(wrapped_x, -1.0);  // more than two thirds of the flag's length behind the pole
-  // And then most of its length out in front of it: 1.15 m with the wind held
-  // over substeps, 1.43 m every substep (2026-12-07). The unwrapping is the
-  // flapping's own chaos at 3 m/s: other seeds' fly ends reach 0.3-1.44 m by 6 s.
-  EXPECT_GT(unwrapped_x, 1.0);
+  EXPECT_LT(wrapped_x, -1.0);   // more than two thirds of the flag's length behind the pole
+  EXPECT_GT(unwrapped_x, 1.2);  // and then most of its length out in front of it
 }
 
 // banner_ground in the hybrid: its lower part lies down on the ground and
@@ -358,15 +349,9 @@ TEST(HybridGround, TheBannerLaidOnTheGroundNeverCrossesItself) {
     ASSERT_EQ(run.frame_count, 121);
     EXPECT_EQ(run.crossing, 0);
     EXPECT_LE(run.below_ground_m, kSurfaceSlack);
-    // The infill holds its fibers within 1%; past it only where the settle
-    // pushed (a frame or two whose worst link is the chaos of the slap on the
-    // ground: 0.88-3.04% over seeds 1-6, 2026-12-07). Measured on this seed:
-    // the frames' worst links 0.59% at the 90th percentile, one frame past 1.05%.
-    std::vector<double> worst = run.frame_max_strain;
-    ASSERT_FALSE(worst.empty());
-    std::sort(worst.begin(), worst.end());
-    EXPECT_LE(worst[worst.size() * 9 / 10], 0.0065);
-    EXPECT_LE(std::count_if(worst.begin(), worst.end(), [](double e) { return e > 0.0105; }), 2);
+    // Measured 1.15% both ways (2.16% laid flat: the fiber sweeps stretched
+    // the rows along the ground).
+    EXPECT_LE(run.max_strain, 0.0125);
   }
 }
 

@@ -173,8 +173,11 @@ TEST(Creases, TheWindPullsTheFoldLinesOutFasterTheStrongerItBlows) {
 
     EXPECT_LT(relaxed[fast], 2.49);
   }
-  // More than 1.2x the relaxation (measured 0.0355 / 0.0287 rad = 1.24x).
-  EXPECT_GT(2.5 - relaxed[1], 1.2 * (2.5 - relaxed[0]));
+  // More than 1.1x the relaxation (measured 0.0328 / 0.0287 rad = 1.14x with
+  // the wind held over substeps, 0.0355 / 0.0287 = 1.24x evaluated every
+  // substep: the 15 m/s flap is chaotic, and the pull it relaxes the fold by
+  // is its history's, 2026-12-07).
+  EXPECT_GT(2.5 - relaxed[1], 1.1 * (2.5 - relaxed[0]));
 }
 
 // Per frame, each dense column's median turning angle along the rows (columns
@@ -223,21 +226,20 @@ TEST(Creases, TheHybridDrawsAFoldLineWhereItLiesAtDenseResolution) {
   const std::vector<std::vector<double>> creased = run(true), plain = run(false);
   const std::vector<double> whole = ratios(creased, 0, creased.size());
   // The strongest line between the coarse columns 16 and 40 is the fold's
-  // (columns 27-30: within 2 dense links), not a coarse column. Measured: 29, 2.25x the cloth.
+  // (columns 27-30: within 2 dense links), not a coarse column. Measured: 29, 2.3x the cloth.
   const auto strongest = std::max_element(whole.begin() + 15, whole.begin() + 40);
   const int column = int(strongest - whole.begin()) + 1;
   EXPECT_GE(column, 27);
   EXPECT_LE(column, 30);
   EXPECT_GT(*strongest, 2.0);
-  // Most marked at first (0.2-0.7 s: 3.4x), less as the wind pulls (2.1x later:
-  // the crease keeps its side, so the wind only flattens it). The flap is
-  // chaotic from about 0.5 s (two runs 0.01 mm apart at 0.2 s are 40 mm apart
-  // at 0.7 s): with the wind evaluated every substep the same run reads 4.5x
-  // and 2.4x (2026-12-07).
+  // Most marked at first (0.2-0.7 s: 4.6x), less as the wind pulls (2.1x later:
+  // the crease keeps its side, so the wind only flattens it). Measured
+  // 2026-12-07; with the wind evaluated every substep 4.5x and 2.4x (the flap
+  // is chaotic from about 0.5 s).
   const double early = ratios(creased, 0, 15)[28], late = ratios(creased, 15, creased.size())[28];
-  EXPECT_GT(early, 3.0);
+  EXPECT_GT(early, 4.0);
   EXPECT_LT(late, 0.8 * early);
-  EXPECT_GT(late, 1.8);
+  EXPECT_GT(late, 1.9);
   // Without the fold, nothing marks that column (measured 1.03x).
   EXPECT_LT(ratios(plain, 0, plain.size())[28], 1.3);
 }

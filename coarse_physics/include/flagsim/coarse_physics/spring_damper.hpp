@@ -12,22 +12,28 @@
 // solver.substeps is only a minimum. Past the limit (which the solver never
 // picks itself), the run is caught by the divergence checks of the run loop.
 //
-// Held forces (a multiple-time-step scheme, as r-RESPA's impulse splitting but
-// with the slow force spread evenly): the substep is set by the springs (0.13
-// ms on the default 9 x 13 coarse lattice, 8 us at 129 x 193), while the wind on
-// its 0.25 m panels changes on the flap's time scale. So the terms whose
-// timing() is kSlow (the wind) or kConstant (gravity) are evaluated together
-// once every hold_substeps() substeps, from the first substep of each frame,
-// and their sum is held between; the springs and bending are evaluated every
-// substep. The hold is the largest whole number of substeps within
-// solver.wind_hold (default 0.1) x 1 / the slow terms' velocity rate bound,
-// at least 1 and at most the frame: the wind's velocity response (its
-// damping) then lags by at most a tenth of its fastest e-folding time, which
-// is far from the delayed damping's own stability limit (rate x delay <
-// pi / 2). On the default scene (rate bound 186/s) that is 0.54 ms, 4
-// substeps; at 129 x 193, 66. Measured (issue 35 item 6, nine seeds): the
-// default hybrid's flap figures move less than their seed scatter, and the
-// wind's stage falls from 0.53 to 0.13 ms a frame.
+// Held forces (a multiple-time-step scheme): the substep is set by the
+// springs (0.13 ms on the default 9 x 13 coarse lattice, 8 us at 129 x 193),
+// while the wind on its 0.25 m panels changes on the flap's time scale. So
+// the terms whose timing() is kSlow (the wind) or kConstant (gravity) are
+// evaluated together once every hold_substeps() substeps, from the first
+// substep of each frame, and between two evaluations their sum is
+// extrapolated along its change since the evaluation before (second order,
+// as Adams-Bashforth's two steps; a frame's first hold is held constant, so
+// that a frame depends only on the state it starts from and a resumed run
+// keeps its bits). The springs and bending are evaluated every substep. Not
+// in scenes with obstacles ([pole] radius, [ground], [contact]), whose
+// projections change velocities within a substep, nor with the vortex
+// lattice. The
+// hold is the largest whole number of substeps within solver.wind_hold
+// (default 0.1) x 1 / the slow terms' velocity rate bound, at least 1 and at
+// most the frame: the extrapolated velocity response (the wind's damping) is
+// then well inside its stability interval (rate x hold < 1). On the default
+// scene (rate bound 186/s) the hold is 0.54 ms, 4 substeps; at 129 x 193, 64.
+// Measured 2026-12-07 (docs/flag_physics.md, "The wind held over substeps"):
+// 0.2 s of the default coarse flag 0.6 um from every substep's run (11.5 um
+// held constant, without the extrapolation); the default hybrid's flap over 27
+// seeds within its seed scatter; the wind's stage 0.53 -> 0.13 ms a frame.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -109,6 +115,8 @@ class SpringDamperSolver {
   std::vector<Vec3> forces_n_;
   std::vector<std::size_t> held_terms_;  ///< indices into terms_ of kSlow and kConstant terms
   std::vector<Vec3> held_n_;             ///< their forces' sum, held over hold_substeps_
+  std::vector<Vec3> held_before_n_;      ///< the sum at the hold before, in this frame
+  bool extrapolate_ = false;             ///< this hold has one before it in its frame
   int hold_substeps_ = 1;
   int substep_ = 0;  ///< substeps since the frame's start (or construction)
   /// wind.model = "vortex": the lift and the air's inertia (solved with the masses)
