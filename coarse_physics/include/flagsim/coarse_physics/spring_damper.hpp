@@ -24,12 +24,12 @@
 // keeps its bits). The springs and bending are evaluated every substep. Not
 // in scenes with obstacles ([pole] radius, [ground], [contact]), whose
 // projections change velocities within a substep, nor with the vortex
-// lattice. The
-// hold is the largest whole number of substeps within solver.wind_hold
-// (default 0.1) x 1 / the slow terms' velocity rate bound, at least 1 and at
-// most the frame: the extrapolated velocity response (the wind's damping) is
-// then well inside its stability interval (rate x hold < 1). On the default
-// scene (rate bound 186/s) the hold is 0.54 ms, 4 substeps; at 129 x 193, 64.
+// lattice. The hold is the largest whole number of substeps within
+// solver.wind_hold (default 0.1) x 1 / the slow terms' velocity rate bound,
+// at least 1 and at most the frame: the extrapolated velocity response (the
+// wind's damping) is then well inside its stability interval (rate x hold <
+// 1). On the default scene (rate bound 186/s) the hold is 0.54 ms, 4
+// substeps; at 129 x 193, 64.
 // Measured 2026-12-07 (docs/flag_physics.md, "The wind held over substeps"):
 // 0.2 s of the default coarse flag 0.6 um from every substep's run (11.5 um
 // held constant, without the extrapolation); the default hybrid's flap over 27
