@@ -8,7 +8,7 @@
 # round's ratio held / every substep of the whole frame's median; a round
 # whose two runs' update stages ("integrate": the same work in both) differ by
 # more than 10% ran at two machine speeds and is marked so. (The held sum's
-# extrapolation is timed with the first term after it, "stretch".)
+# extrapolation between evaluations is timed in the wind's stage.)
 # Usage: bench/wind_hold.sh [FRAMES] [ROUNDS] [REF_FRAMES]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

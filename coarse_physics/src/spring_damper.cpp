@@ -42,8 +42,10 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene, std::shared_ptr<const
     const ForceTiming timing = terms_[t]->timing();
     if (timing == ForceTiming::kEverySubstep) continue;
     held_terms_.push_back(t);
-    if (timing == ForceTiming::kSlow)
-      slow_rate = std::max(slow_rate, terms_[t]->velocity_rate_bound());
+    if (timing == ForceTiming::kSlow && terms_[t]->velocity_rate_bound() >= slow_rate) {
+      slow_rate = terms_[t]->velocity_rate_bound();
+      slow_term_ = t;
+    }
   }
   // Without a slow term nothing is held (gravity alone is cheap, and such a
   // scene keeps its bits from before holds).
@@ -96,13 +98,16 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
       for (const std::size_t t : held_terms_)
         laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, held_n_); });
     }
-    if (extrapolate_) {
-      const double along = double(into_hold) / double(hold_substeps_);
-      for (std::size_t i = 0; i < forces_n_.size(); ++i)
-        forces_n_[i] = held_n_[i] + along * (held_n_[i] - held_before_n_[i]);
-    } else {
-      std::copy(held_n_.begin(), held_n_.end(), forces_n_.begin());
-    }
+    // Timed with the slow term (the wind's stage is what the wind costs).
+    laps.run(stage_of(slow_term_), [&] {
+      if (extrapolate_) {
+        const double along = double(into_hold) / double(hold_substeps_);
+        for (std::size_t i = 0; i < forces_n_.size(); ++i)
+          forces_n_[i] = held_n_[i] + along * (held_n_[i] - held_before_n_[i]);
+      } else {
+        std::copy(held_n_.begin(), held_n_.end(), forces_n_.begin());
+      }
+    });
     for (std::size_t t = 0; t < terms_.size(); ++t)
       if (terms_[t]->timing() == ForceTiming::kEverySubstep)
         laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });

@@ -117,6 +117,7 @@ class SpringDamperSolver {
   std::vector<Vec3> held_n_;             ///< their forces' sum, held over hold_substeps_
   std::vector<Vec3> held_before_n_;      ///< the sum at the hold before, in this frame
   bool extrapolate_ = false;             ///< this hold has one before it in its frame
+  std::size_t slow_term_ = 0;            ///< the kSlow term setting the hold (its stage times it)
   int hold_substeps_ = 1;
   int substep_ = 0;  ///< substeps since the frame's start (or construction)
   /// wind.model = "vortex": the lift and the air's inertia (solved with the masses)
