@@ -13,7 +13,7 @@
 
 namespace flagsim::infill {
 
-Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
+Eigen::MatrixXd natural_spline_matrix(int coarse_nodes, int dense_nodes) {
   assert(coarse_nodes >= 2 && (dense_nodes - 1) % (coarse_nodes - 1) == 0);
   const int n = dense_nodes, m = coarse_nodes, stride = (n - 1) / (m - 1);
   if (m == n) return Eigen::MatrixXd::Identity(n, n);
@@ -73,6 +73,35 @@ Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
   const Eigen::MatrixXd z = qr.solve(rhs);
   Eigen::MatrixXd matrix = p;
   for (int c = 0; c < free_count; ++c) matrix.row(free_nodes[std::size_t(c)]) += z.row(c);
+  return matrix;
+}
+
+Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes) {
+  assert(coarse_nodes >= 2 && (dense_nodes - 1) % (coarse_nodes - 1) == 0);
+  const int m = coarse_nodes, n = dense_nodes, stride = (n - 1) / (m - 1);
+  constexpr int kDegree = kEndExtrapolationDegree, kGhosts = kEndGhostNodes;
+  if (m == n || m <= kDegree) return natural_spline_matrix(m, n);
+  // The coarse values continued kGhosts nodes past each end by the polynomial
+  // of degree kDegree through the last kDegree + 1 of them: ghost g (1, 2, ...)
+  // beyond node 0 is sum_a L_a(-g) y_a, L_a the Lagrange basis on nodes
+  // 0 .. kDegree (g = 1: 3 y0 - 3 y1 + y2, a constant second difference; g =
+  // 2: 6 y0 - 8 y1 + 3 y2), and the mirror image at the other end.
+  Eigen::MatrixXd extend = Eigen::MatrixXd::Zero(m + 2 * kGhosts, m);
+  for (int i = 0; i < m; ++i) extend(kGhosts + i, i) = 1.0;
+  for (int g = 1; g <= kGhosts; ++g)
+    for (int a = 0; a <= kDegree; ++a) {
+      double lagrange = 1.0;
+      for (int b = 0; b <= kDegree; ++b)
+        if (b != a) lagrange *= double(-g - b) / double(a - b);
+      extend(kGhosts - g, a) = lagrange;
+      extend(kGhosts + m - 1 + g, m - 1 - a) = lagrange;
+    }
+  const Eigen::MatrixXd spline = natural_spline_matrix(m + 2 * kGhosts, n + 2 * kGhosts * stride);
+  Eigen::MatrixXd matrix = (spline * extend).middleRows(Eigen::Index(kGhosts) * stride, n);
+  for (int i = 0; i < m; ++i) {  // knots exact, not 1 - 1e-15
+    matrix.row(Eigen::Index(i) * stride).setZero();
+    matrix(Eigen::Index(i) * stride, i) = 1.0;
+  }
   return matrix;
 }
 

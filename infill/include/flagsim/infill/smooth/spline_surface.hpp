@@ -10,16 +10,20 @@
 // interpolants along the rows and the columns, so row j of the dense lattice is
 // the same curve through the coarse nodes whatever cell it is in.
 //
-// The 1D interpolant is a discrete natural spline of degree 7: among all dense
-// sequences through the coarse values it minimises the sum of squared fourth
-// differences (the continuous one minimises the integral of f''''^2). Why so
-// smooth: an interpolant of rough data (the 9 x 13 physics folds its links by
-// 10-40 degrees) bends most where it is pinned to the data, and how much more
-// depends on the degree. Median turning angle on the coarse lines over the
-// median between them, default scene, per frame after 1 s (median / worst of
-// 271 frames): cubic (second differences) 1.45 / -, quintic (third) 1.18 /
-// 1.72, degree 7 (fourth) 1.03 / 1.48, for 15% more projection work than the
-// quintic (its overshoots are larger).
+// The 1D interpolant is a discrete natural spline of degree 11: among all
+// dense sequences through the coarse values it minimises the sum of squared
+// sixth differences (the continuous one minimises the integral of
+// (d^6 f / dx^6)^2), laid through the coarse values continued two nodes past
+// each border (below). Why so smooth: an interpolant of rough data (the 9 x 13
+// physics folds its links by 10-40 degrees) bends most where it is pinned to
+// the data, and how much more depends on the degree. Median turning angle on
+// the coarse lines over the median between them (cloth_checks.py imprint),
+// default scene, per frame after 1 s, median / worst frame: with natural ends,
+// cubic (second differences) 1.45 / -, quintic (third) 1.18 / 1.72, degree 7
+// (fourth) 1.03 / 1.48 (2026-12-03); with the ends continued (2026-12-08, all
+// 10 s), degree 7 1.13 / 1.32, degree 11 1.06 / 1.20. Degree 7's figure rose
+// when the ends were continued because its curled end cells (below), off the
+// coarse lines, had raised the median between them.
 // The surface is linear in the coarse nodes: dense_d = R X_d C^T for each
 // coordinate d, with R [J x Jc] and C [K x Kc] built once. Evaluated as two
 // passes of scaled row sums on the xyz of a row side by side (the dense
@@ -35,14 +39,38 @@
 
 namespace flagsim::infill {
 
-/// Order of the differences the interpolant minimises (4: degree 7).
-inline constexpr int kSplineOrder = 4;
+/// Order of the differences the interpolant minimises (6: degree 11).
+inline constexpr int kSplineOrder = 6;
 
 /// [dense_nodes x coarse_nodes]: the dense samples of the discrete natural
 /// spline through coarse values at every `stride`-th dense node, stride =
-/// (dense_nodes - 1) / (coarse_nodes - 1). Reproduces cubics exactly (with
-/// fewer than 4 coarse nodes: the polynomial through them); the identity when
-/// coarse_nodes == dense_nodes.
+/// (dense_nodes - 1) / (coarse_nodes - 1). Reproduces polynomials of degree
+/// below kSplineOrder exactly (with fewer coarse nodes: the polynomial through
+/// them); the identity when coarse_nodes == dense_nodes.
+Eigen::MatrixXd natural_spline_matrix(int coarse_nodes, int dense_nodes);
+
+/// How the surface ends at the cloth's borders: the coarse values are continued
+/// kEndGhostNodes nodes past each end by the parabola through the last three
+/// (a constant second difference: 3 y0 - 3 y1 + y2, then 6 y0 - 8 y1 + 3 y2),
+/// and the natural spline is laid through them all. Why: a natural spline
+/// leaves the low derivatives free at its ends, and on the physics' folded data
+/// it bent its end cells 2-4x as much as the inside of the cloth (degree 7 on
+/// the default scene's coarse frames after 1 s: the rows' median turning 3.8x
+/// the cloth's median at the fly end, 3.7x at the pole, where the coarse
+/// curvature is like the inside's; degree 11, 6-8x); every free edge curled,
+/// and the crease-line measure found its worst line by an edge in most frames.
+/// Continued, the end cells bend like their neighbours (degree 11: 0.8-1.8x,
+/// the inside 0.8-1.5x). At degree 7 a cubic continuation (constant third
+/// difference) still bent them 1.9-2.0x and a linear one flattened them (f'' =
+/// 0, 0.1x). docs/dense_surface.md.
+inline constexpr int kEndExtrapolationDegree = 2;
+inline constexpr int kEndGhostNodes = 2;
+
+/// [dense_nodes x coarse_nodes]: the dense samples of the surface's 1D
+/// interpolant, natural_spline_matrix() through the coarse values continued
+/// past the ends as said above. Passes through the coarse values; reproduces
+/// quadratics exactly (with 2 coarse nodes it is the natural spline: the
+/// line); the identity when coarse_nodes == dense_nodes.
 Eigen::MatrixXd spline_interpolation_matrix(int coarse_nodes, int dense_nodes);
 
 class SplineSurface {
