@@ -54,12 +54,15 @@ SmoothInfill::SmoothInfill(const Lattice& fine, const CellGrid& grid,
     coarser_positions_.resize(half.node_count());
     coarser_offsets_.resize(std::size_t(half.rows) * std::size_t(fine.cols));
   }
-  // Whether the coarsest level smooths is decided by the cells of the lattice
-  // the user sees: each level sets it for its own cells, and the finest level,
-  // constructed last, has the final word.
-  SmoothInfill* coarsest = this;
-  while (coarsest->coarser_) coarsest = coarsest->coarser_.get();
-  coarsest->smooths_ = std::min(grid.row_stride, grid.col_stride) >= kSmoothedCellLinks;
+  // Whether the levels below smooth is decided by the cells of the lattice the
+  // user sees: each level sets it for the levels below it, and the finest
+  // level, constructed last, has the final word. Every level below the finest
+  // smooths (each hands its correction to the next); a level alone, the
+  // coarsest without a finer one, decides for itself.
+  const bool smooth = std::min(grid.row_stride, grid.col_stride) >= kSmoothedCellLinks;
+  if (!coarser_) smooths_ = smooth;
+  for (SmoothInfill* level = coarser_.get(); level; level = level->coarser_.get())
+    level->smooths_ = smooth;
 }
 
 // Weights of the coarser samples that give fine sample `i` (of `n`): the
@@ -416,7 +419,7 @@ void SmoothInfill::fill(std::span<const Vec3> coarse_m, std::span<Vec3> position
   };
   if (ridges && !wrinkles_) add_ridges();
   run_timed(times, stages_.projection, relax);
-  if (smooths_)  // the coarsest level: the correction at the scale of a cell, smoothed
+  if (smooths_)  // a level below the finest: its correction at its own scale, smoothed
     for (int cycle = 0; cycle < kSmoothingCycles; ++cycle) {
       run_timed(times, stages_.projection, [&] { smooth_correction(positions_m); });
       run_timed(times, stages_.projection, relax);

@@ -37,9 +37,9 @@
 //      on a yarn's extension (property 1), which no fabric setting moves.
 //  3.4 relaxation: whole-fiber Gauss-Newton projection (fiber_projection.hpp)
 //      until every link is within its band; only pinned nodes are held. Under
-//      cells of 16 links or more, on the coarsest level its correction is
-//      smoothed and projected again (kSmoothingCycles, below), so that it carries no crease on the
-//      coarse lines up to the finer levels.
+//      cells of 16 links or more, on every level below the finest its
+//      correction is smoothed and projected again (kSmoothingCycles, below),
+//      so that it hands no crease up to the next finer level.
 //  3.5 (with [wrinkles]) re-move by the bending feature, on whole fibers:
 //      each row and column's slack on the mean surface, dL = L - c with c the
 //      fiber's length along the surface (the paper's chord |P_j1 - P_jK| of
@@ -100,9 +100,10 @@ inline constexpr int kMaxProjectionRounds = 400;
 /// A coarser level is made while the cells of the halved lattice still have
 /// at least this many links a side.
 inline constexpr int kLevelStride = 4;
-/// On the coarsest level (the lattice without a coarser one: kLevelStride to
-/// 2 kLevelStride - 1 links a cell side), the projection's correction is
-/// low-passed and projected again kSmoothingCycles times, with
+/// On every level below the finest (since 2026-12-08; before, the coarsest
+/// only: the lattice without a coarser one, kLevelStride to 2 kLevelStride - 1
+/// links a cell side), the projection's correction is low-passed and projected
+/// again kSmoothingCycles times, with
 /// kSmoothingPasses passes of a binomial filter each way (standard deviation
 /// sqrt(passes / 2) = 1.4 links, a third of a cell of 4). Why: a Gauss-Newton
 /// step changes a link's length by a normal move only as much as the fiber
@@ -136,6 +137,18 @@ inline constexpr int kLevelStride = 4;
 /// crease lines 6.52 / 10.2 against 6.27 / 9.13. So the second and third cycles
 /// buy nothing on the default scene and about a tenth of the crease-line ratio
 /// on finer cells and in a storm, for 0.2 ms a frame.
+/// Every level below the finest since 2026-12-08: each level's projection puts
+/// its normal corrections where its fibers bend most and the level above
+/// inherits them, so the coarsest level's smoothing alone left creases that the
+/// intermediate levels made (default scene 10 s, crease lines median / p90 2.74
+/// / 4.05 -> 2.60 / 3.84; gusts 2.82 / 3.82 -> 2.77 / 3.76; the storm at
+/// 129 x 193 7.07 / 11.55 -> 6.83 / 9.97). At 513 x 769 the finest level's rows
+/// and columns, which had undone each other for tens of rounds in a quarter of
+/// the frames (from a start with those creases), converge in 3 rounds in the
+/// median frame again (mean 17.6 -> 5.3 rounds over 301 frames). The finest
+/// level does not smooth: it hands nothing on, and its cycle is a projection of
+/// the whole output (one cycle there: 2.56 / 3.72 for +1.2 ms a frame). Cost at
+/// 129 x 193: the 65 x 97 level's cycle, 0.2-0.3 ms a frame (docs/dense_surface.md).
 inline constexpr int kSmoothedCellLinks = 16;
 inline constexpr int kSmoothingPasses = 4;
 inline constexpr int kSmoothingCycles = 1;
@@ -217,7 +230,8 @@ class SmoothInfill final : public InfillMethod {
   double fold_limit_rad_ = 0.0;
   std::vector<double> fold_weight_;  ///< [Jc*Kc] per coarse node: 1 spline, 0 coarse triangles
   std::vector<Vec3> flat_;           ///< [J*K] the coarse triangles at the dense nodes
-  bool smooths_ = false;  ///< this level runs the kSmoothingCycles (set by the finest level)
+  bool smooths_ =
+      false;  ///< this level runs the kSmoothingCycles (set by the finest level for those below it)
   std::vector<Vec3> correction_, smoothed_;  ///< smooth_correction's work buffers
   std::vector<Vec3> normals_;                ///< 3.5 and the ridges: the surface's normals
   std::vector<double> last_offset_;          ///< 3.5: last frame's offset along its normal, m
