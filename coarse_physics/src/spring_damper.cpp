@@ -34,32 +34,13 @@ SpringDamperSolver::SpringDamperSolver(const Scene& scene, std::shared_ptr<const
   substeps_per_frame_ =
       physics::substeps_per_frame(frame_s_, stable_substep_s_, scene.solver.substeps);
 
-  // Held forces (see the header): the hold within wind_hold / the slow terms'
-  // rate bound. Not with the vortex lattice, whose air inertia is solved with
-  // every substep's forces.
-  double slow_rate = 0.0;
-  for (std::size_t t = 0; t < terms_.size(); ++t) {
-    const ForceTiming timing = terms_[t]->timing();
-    if (timing == ForceTiming::kEverySubstep) continue;
-    held_terms_.push_back(t);
-    if (timing == ForceTiming::kSlow && terms_[t]->velocity_rate_bound() >= slow_rate) {
-      slow_rate = terms_[t]->velocity_rate_bound();
-      slow_term_ = t;
-    }
-  }
-  // Without a slow term nothing is held (gravity alone is cheap, and such a
-  // scene keeps its bits from before holds).
-  if (slow_rate > 0.0) {
-    const double hold_s = scene.solver.wind_hold / slow_rate;
-    hold_substeps_ =
-        int(std::clamp(std::floor(hold_s / substep_s() + 1e-9), 1.0, double(substeps_per_frame_)));
-  }
-  // Nor with obstacles: a projection changes velocities within a substep,
-  // which a held force would not follow (banner_ground crossed itself on 4
-  // seeds of 6 with holds, 1 without).
-  if (vortex_ || obstacles_) hold_substeps_ = 1;
-  held_n_.assign(model_->lattice.node_count(), Vec3::Zero());
-  held_before_n_ = held_n_;
+  // Held forces (held_forces.hpp). Not with obstacles: a projection changes
+  // velocities within a substep, which a held force would not follow
+  // (banner_ground crossed itself on 4 seeds of 6 with holds, 1 without); nor
+  // with the vortex lattice, whose air inertia is solved with every substep's
+  // forces.
+  held_.emplace(terms_, scene.solver.wind_hold, substep_s(), substeps_per_frame_,
+                !vortex_ && !obstacles_, model_->lattice.node_count());
 }
 
 void SpringDamperSolver::register_stages(StageTimes& times) {
@@ -70,7 +51,7 @@ void SpringDamperSolver::register_stages(StageTimes& times) {
 
 void SpringDamperSolver::advance_frame(ClothState& state, StageTimes* times) {
   if (vortex_) vortex_->begin_frame(state.time_s, state.x_m);
-  substep_ = 0;
+  held_->begin_frame();
   advance_substeps(terms_, state, substeps_per_frame_, substep_s(), [&](double dt) {
     step(state, dt, times);
     return true;
@@ -81,38 +62,8 @@ void SpringDamperSolver::step(ClothState& state, double dt_s, StageTimes* times)
   // The stages run back to back: one clock read between two.
   StageLaps laps(times);
   const auto stage_of = [&](std::size_t t) { return term_stage_.empty() ? -1 : term_stage_[t]; };
-  if (hold_substeps_ == 1) {  // nothing held: every term in pipeline order, as before holds
-    std::fill(forces_n_.begin(), forces_n_.end(), Vec3::Zero());
-    for (std::size_t t = 0; t < terms_.size(); ++t)
-      laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
-  } else {
-    // The held terms' sum at the hold's first substep, extrapolated along the
-    // change from the frame's hold before (none in a frame's first hold, so
-    // that a frame depends on the state it starts from alone), then the
-    // others on top.
-    const int into_hold = substep_ % hold_substeps_;
-    if (into_hold == 0) {
-      extrapolate_ = substep_ > 0;
-      if (extrapolate_) held_before_n_.swap(held_n_);
-      std::fill(held_n_.begin(), held_n_.end(), Vec3::Zero());
-      for (const std::size_t t : held_terms_)
-        laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, held_n_); });
-    }
-    // Timed with the slow term (the wind's stage is what the wind costs).
-    laps.run(stage_of(slow_term_), [&] {
-      if (extrapolate_) {
-        const double along = double(into_hold) / double(hold_substeps_);
-        for (std::size_t i = 0; i < forces_n_.size(); ++i)
-          forces_n_[i] = held_n_[i] + along * (held_n_[i] - held_before_n_[i]);
-      } else {
-        std::copy(held_n_.begin(), held_n_.end(), forces_n_.begin());
-      }
-    });
-    for (std::size_t t = 0; t < terms_.size(); ++t)
-      if (terms_[t]->timing() == ForceTiming::kEverySubstep)
-        laps.run(stage_of(t), [&] { terms_[t]->add_forces(state.x_m, state.v_m_s, forces_n_); });
-  }
-  ++substep_;
+  held_->add(terms_, state.x_m, state.v_m_s, forces_n_,
+             [&](std::size_t t, auto&& work) { laps.run(stage_of(t), work); });
   if (vortex_) {
     laps.run(vortex_stage_, [&] {
       vortex_->advance_to(state.time_s);

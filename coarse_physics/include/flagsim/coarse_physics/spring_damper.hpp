@@ -12,24 +12,13 @@
 // solver.substeps is only a minimum. Past the limit (which the solver never
 // picks itself), the run is caught by the divergence checks of the run loop.
 //
-// Held forces (a multiple-time-step scheme): the substep is set by the
-// springs (0.13 ms on the default 9 x 13 coarse lattice, 8 us at 129 x 193),
-// while the wind on its 0.25 m panels changes on the flap's time scale. So
-// the terms whose timing() is kSlow (the wind) or kConstant (gravity) are
-// evaluated together once every hold_substeps() substeps, from the first
-// substep of each frame, and between two evaluations their sum is
-// extrapolated along its change since the evaluation before (second order,
-// as Adams-Bashforth's two steps; a frame's first hold is held constant, so
-// that a frame depends only on the state it starts from and a resumed run
-// keeps its bits). The springs and bending are evaluated every substep. Not
-// in scenes with obstacles ([pole] radius, [ground], [contact]), whose
-// projections change velocities within a substep, nor with the vortex
-// lattice. The hold is the largest whole number of substeps within
-// solver.wind_hold (default 0.1) x 1 / the slow terms' velocity rate bound,
-// at least 1 and at most the frame: the extrapolated velocity response (the
-// wind's damping) is then well inside its stability interval (rate x hold <
-// 1). On the default scene (rate bound 186/s) the hold is 0.54 ms, 4
-// substeps; at 129 x 193, 64.
+// Held forces (held_forces.hpp): the substep is set by the springs (0.13 ms
+// on the default 9 x 13 coarse lattice, 8 us at 129 x 193), while the wind on
+// its 0.25 m panels changes on the flap's time scale, so the wind and gravity
+// are evaluated once every hold_substeps() substeps and extrapolated between;
+// the springs and bending every substep. Not in scenes with obstacles ([pole]
+// radius, [ground], [contact]), nor with the vortex lattice. On the default
+// scene (rate bound 186/s) the hold is 0.54 ms, 4 substeps; at 129 x 193, 64.
 // Measured 2026-12-07 (docs/flag_physics.md, "The wind held over substeps"):
 // 0.2 s of the default coarse flag 0.6 um from every substep's run (11.5 um
 // held constant, without the extrapolation); the default hybrid's flap over 27
@@ -37,12 +26,14 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "flagsim/coarse_physics/cloth_model.hpp"
 #include "flagsim/coarse_physics/cloth_state.hpp"
 #include "flagsim/coarse_physics/force_term.hpp"
+#include "flagsim/coarse_physics/held_forces.hpp"
 #include "flagsim/coarse_physics/obstacles.hpp"
 #include "flagsim/coarse_physics/pin_motion.hpp"
 #include "flagsim/coarse_physics/stability.hpp"
@@ -76,7 +67,7 @@ class SpringDamperSolver {
   int substeps_per_frame() const { return substeps_per_frame_; }
   double substep_s() const { return frame_s_ / substeps_per_frame_; }
   /// Substeps over which the slow and constant terms' forces are held (1: none held).
-  int hold_substeps() const { return hold_substeps_; }
+  int hold_substeps() const { return held_->hold_substeps(); }
 
   /// Registers one timing column per force term and one for the update.
   void register_stages(StageTimes& times);
@@ -113,13 +104,7 @@ class SpringDamperSolver {
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<std::string> effects_;
   std::vector<Vec3> forces_n_;
-  std::vector<std::size_t> held_terms_;  ///< indices into terms_ of kSlow and kConstant terms
-  std::vector<Vec3> held_n_;             ///< their forces' sum, held over hold_substeps_
-  std::vector<Vec3> held_before_n_;      ///< the sum at the hold before, in this frame
-  bool extrapolate_ = false;             ///< this hold has one before it in its frame
-  std::size_t slow_term_ = 0;            ///< the kSlow term setting the hold (its stage times it)
-  int hold_substeps_ = 1;
-  int substep_ = 0;  ///< substeps since the frame's start (or construction)
+  std::optional<HeldForces> held_;  ///< the wind and gravity, held over substeps
   /// wind.model = "vortex": the lift and the air's inertia (solved with the masses)
   std::unique_ptr<VortexWake> vortex_;
   int vortex_stage_ = -1;
