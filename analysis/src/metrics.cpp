@@ -1,6 +1,7 @@
 #include "flagsim/analysis/metrics.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -150,20 +151,28 @@ double wrinkle_wavelength_m(const Lattice& lattice, const Frames& frames, int fi
   return wavelengths[wavelengths.size() / 2];
 }
 
+namespace {
+
+// The angle a fiber turns by at b, between a -> b and b -> c, rad.
+double turning(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 u = b - a, v = c - b;
+  return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+// The median (the mean of the middle two for an even count, as numpy's), 0 if empty.
+double median(std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+  const double upper = v[v.size() / 2];
+  if (v.size() % 2) return upper;
+  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2)));
+}
+
+}  // namespace
+
 double coarse_line_imprint(const Lattice& lattice, std::span<const Vec3> frame,
                            std::span<const int> coarse_rows, std::span<const int> coarse_cols) {
   const int J = lattice.rows, K = lattice.cols;
-  const auto turning = [](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 u = b - a, v = c - b;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  const auto median = [](std::vector<double>& v) {
-    if (v.empty()) return 0.0;
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-    const double upper = v[v.size() / 2];
-    if (v.size() % 2) return upper;
-    return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2)));
-  };
   std::vector<char> on_row(std::size_t(J), 0), on_col(std::size_t(K), 0);
   for (int j : coarse_rows) on_row[std::size_t(j)] = 1;
   for (int k : coarse_cols) on_col[std::size_t(k)] = 1;
@@ -184,6 +193,31 @@ double coarse_line_imprint(const Lattice& lattice, std::span<const Vec3> frame,
     return median(on) / std::max(median(off), 1e-9);
   };
   return std::max(ratio(across_rows_on, across_rows_off), ratio(across_cols_on, across_cols_off));
+}
+
+double crease_line_ratio(const Lattice& lattice, std::span<const Vec3> frame, int margin) {
+  const int J = lattice.rows, K = lattice.cols, e = margin;
+  assert(J > 2 * e + 2 && K > 2 * e + 2 && frame.size() == lattice.node_count());
+  const NodeView x(lattice, frame);
+  // Rows and columns e .. J-1-e (K-1-e): along each such row line the column
+  // fibers' turning at it, along each column line the row fibers'.
+  std::vector<double> all, line;
+  double worst = 0.0;
+  for (int j = e; j <= J - 1 - e; ++j) {
+    line.clear();
+    for (int k = e; k <= K - 1 - e; ++k)
+      line.push_back(turning(x.at(j - 1, k), x.at(j, k), x.at(j + 1, k)));
+    all.insert(all.end(), line.begin(), line.end());
+    worst = std::max(worst, median(line));
+  }
+  for (int k = e; k <= K - 1 - e; ++k) {
+    line.clear();
+    for (int j = e; j <= J - 1 - e; ++j)
+      line.push_back(turning(x.at(j, k - 1), x.at(j, k), x.at(j, k + 1)));
+    all.insert(all.end(), line.begin(), line.end());
+    worst = std::max(worst, median(line));
+  }
+  return worst / std::max(median(all), 1e-12);
 }
 
 }  // namespace flagsim::analysis

@@ -102,5 +102,37 @@ TEST(Metrics, WrinkleWavelengthOfASineWrinkledSheet) {
   }
 }
 
+// A cap curved alike both ways (z = -(x^2 + y^2) / 2R over the rest
+// rectangle), with a straight V-fold of `fold` rad a side along dense row `row`
+// when fold > 0.
+std::vector<Vec3> cap(const Lattice& lattice, double radius_m, int row, double fold) {
+  std::vector<Vec3> x = lattice.rest_positions();
+  const Vec3 centre = 0.5 * (x.front() + x.back());
+  for (int j = 0; j < lattice.rows; ++j)
+    for (int k = 0; k < lattice.cols; ++k) {
+      Vec3& p = x[lattice.index(j, k)];
+      const Vec3 d = p - centre;
+      p.z() = -(d.x() * d.x() + d.y() * d.y()) / (2.0 * radius_m) +
+              fold * std::abs(j - row) * lattice.spacing_y_m;
+    }
+  return x;
+}
+
+TEST(Metrics, CreaseLineRatioIsOneOnACapAndFindsAStraightFold) {
+  // Every fiber of the cap turns by about h / R, so no line stands out. A
+  // valley of 0.02 rad a side along one row turns the column fibers there by
+  // 0.04 rad less the cap's own h / R (the cap bends the other way), against
+  // h / R = 0.0052 elsewhere: 6.7x.
+  const Lattice lattice = Lattice::rectangle(65, 97, 1.5, 1.0, Vec3::Zero());
+  const double h_over_r = lattice.spacing_x_m / 3.0;
+  const double smooth = crease_line_ratio(lattice, cap(lattice, 3.0, 32, 0.0));
+  EXPECT_NEAR(smooth, 1.0, 0.05);
+  const double folded = crease_line_ratio(lattice, cap(lattice, 3.0, 32, 0.02));
+  const double expected = (0.04 - h_over_r) / h_over_r;
+  EXPECT_NEAR(folded, expected, 0.02 * expected);
+  // A fold within the margin (8 links) of the border is not a crease line here.
+  EXPECT_NEAR(crease_line_ratio(lattice, cap(lattice, 3.0, 4, 0.02)), 1.0, 0.05);
+}
+
 }  // namespace
 }  // namespace flagsim::analysis

@@ -34,6 +34,14 @@
 //    columns, the larger of the two. About 1 for a cloth that does not show
 //    its cells; a per-cell infill with creases on the coarse lines gives 7.
 //    (The same figure as ../shared/tools/cloth_checks.py imprint, per frame.)
+//  - crease_line_ratio: the straightest crease in one frame: over the dense
+//    rows and columns at least `margin` links from the border, each line's
+//    median turning angle across it (of the fibers that cross it), the
+//    largest, over the median turning of those fibers in that window. About 2
+//    for a smoothly flapping flag; a straight crease along one line gives
+//    more. (The same figure as ../shared/tools/cloth_checks.py creaseline, per
+//    frame; issue 34 asks 2.5 in the median frame and 3.5 at the 90th
+//    percentile.)
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -72,5 +80,9 @@ double wrinkle_wavelength_m(const Lattice& lattice, const Frames& frames, int fi
 /// @param coarse_rows, coarse_cols  dense index of each coarse row and column
 double coarse_line_imprint(const Lattice& lattice, std::span<const Vec3> frame,
                            std::span<const int> coarse_rows, std::span<const int> coarse_cols);
+
+/// @param margin  links from the border a line keeps (8 in cloth_checks.py);
+///                needs rows and cols > 2 margin + 2
+double crease_line_ratio(const Lattice& lattice, std::span<const Vec3> frame, int margin = 8);
 
 }  // namespace flagsim::analysis
