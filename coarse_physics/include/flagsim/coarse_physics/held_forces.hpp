@@ -4,22 +4,20 @@
 // 2026-12-08 and was measured, not kept (docs/flag_physics.md).
 //
 // The substep is set by the cloth's stiffness (the spring-damper's stability
-// limit), while the wind on its 0.25 m panels
-// changes on the flap's time scale. So the terms whose timing() is kSlow (the
-// wind) or kConstant (gravity) are evaluated together once every
-// hold_substeps() substeps, from the first substep of each frame, and between
-// two evaluations their sum is extrapolated along its change since the
-// evaluation before (second order, as Adams-Bashforth's two steps; a frame's
-// first hold is held constant, so that a frame depends only on the state it
-// starts from and a resumed run keeps its bits). The other terms are evaluated
-// every substep. The hold is the largest whole number of substeps within
-// solver.wind_hold (default 0.1) x 1 / the slow terms' velocity rate bound, at
-// least 1 and at most the frame: the extrapolated velocity response (the
-// wind's damping) is then well inside its stability interval (rate x hold <
-// 1). Without a slow term nothing is held (gravity alone is cheap, and such a
-// scene keeps its bits from before holds); the integrator says when nothing
-// may be held (obstacles, whose projections change velocities within a
-// substep; the vortex lattice).
+// limit), while the wind on its 0.25 m panels changes on the flap's time
+// scale. So the terms whose timing() is kSlow (the wind) or kConstant
+// (gravity) are evaluated together once every hold_substeps() substeps, from
+// the first substep of each frame, and between two evaluations their sum is extrapolated along its
+// change since the evaluation before (second order, as Adams-Bashforth's two steps; a frame's first
+// hold is held constant, so that a frame depends only on the state it starts from and a resumed run
+// keeps its bits). The other terms are evaluated every substep. The hold is the largest whole
+// number of substeps within solver.wind_hold (default 0.1) x 1 / the slow terms' velocity rate
+// bound, at least 1 and at most the frame: the extrapolated velocity response (the wind's damping)
+// is then well inside its stability interval (rate x hold < 1). Without a slow term nothing is held
+// (gravity alone is cheap, and such a scene keeps its bits from before holds); the integrator says
+// when nothing may be held (obstacles, whose projections change velocities within a substep; the
+// vortex lattice).
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -41,10 +39,6 @@ class HeldForces {
 
   /// Substeps over which the slow and constant terms' forces are held (1: none held).
   int hold_substeps() const { return hold_substeps_; }
-  /// The kSlow term that sets the hold (its stage times the extrapolation);
-  /// meaningful when hold_substeps() > 1.
-  std::size_t slow_term() const { return slow_term_; }
-
   /// The next substep is a frame's first.
   void begin_frame() { substep_ = 0; }
 
@@ -89,7 +83,7 @@ class HeldForces {
   std::vector<Vec3> held_;               ///< their forces' sum, held over hold_substeps_
   std::vector<Vec3> held_before_;        ///< the sum at the hold before, in this frame
   bool extrapolate_ = false;             ///< this hold has one before it in its frame
-  std::size_t slow_term_ = 0;            ///< the kSlow term setting the hold
+  std::size_t slow_term_ = 0;  ///< the kSlow term setting the hold (times the extrapolation)
   int hold_substeps_ = 1;
   int substep_ = 0;  ///< substeps since the frame began
 };

@@ -230,8 +230,8 @@ class SmoothInfill final : public InfillMethod {
   double fold_limit_rad_ = 0.0;
   std::vector<double> fold_weight_;  ///< [Jc*Kc] per coarse node: 1 spline, 0 coarse triangles
   std::vector<Vec3> flat_;           ///< [J*K] the coarse triangles at the dense nodes
-  bool smooths_ =
-      false;  ///< this level runs the kSmoothingCycles (set by the finest level for those below it)
+  /// This level runs the kSmoothingCycles (set by the finest level for those below it).
+  bool smooths_ = false;
   std::vector<Vec3> correction_, smoothed_;  ///< smooth_correction's work buffers
   std::vector<Vec3> normals_;                ///< 3.5 and the ridges: the surface's normals
   std::vector<double> last_offset_;          ///< 3.5: last frame's offset along its normal, m
